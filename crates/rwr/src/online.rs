@@ -1,0 +1,150 @@
+//! Online reward-weighted regression: weighted sufficient statistics with forgetting.
+
+use crate::batch::StepInfo;
+use crate::config::RwrConfig;
+use crate::error::Result;
+use crate::policy::{check_finite, check_len, LinearGaussianPolicy};
+use crate::stats::{Solver, Stats};
+use crate::weights::{check_cost, check_ext, log_weight};
+use nalgebra::DMatrix;
+use rand::Rng;
+
+/// Online form of Algorithm 2, as used by one local controller: every sample is weighted when
+/// it arrives, `w = a · exp(−τ r)` with the current `τ` and an external weight `a` (e.g. a
+/// receptive field's activation), and accumulated into the sufficient statistics of eq. 23,
+/// 24 and 28, which decay by the forgetting factor before each new sample. [`Self::update`] is
+/// the M-step from those statistics. With forgetting 1 and `τ` unchanged between the samples,
+/// `observe`×n + `update` equals one [`crate::BatchRwr::em_step`] on the same samples.
+///
+/// The statistics are stored relative to a running log scale (the largest log weight seen,
+/// decayed by forgetting), so weights never underflow or overflow however large `τ r` gets.
+/// Neither `observe` nor `update` allocates.
+#[derive(Debug, Clone)]
+pub struct OnlineRwr {
+    cfg: RwrConfig,
+    policy: LinearGaussianPolicy,
+    tau: f64,
+    stats: Stats,
+    /// True statistics = stored × exp(log_scale); `−∞` while empty.
+    log_scale: f64,
+    ln_forget: f64,
+    solver: Solver,
+}
+
+impl OnlineRwr {
+    /// `θ = 0` (`p × d`), `σ = sigma_init`, `τ = tau_init`, empty statistics.
+    pub fn new(p: usize, d: usize, cfg: RwrConfig) -> Result<Self> {
+        cfg.validate()?;
+        Self::with_theta(DMatrix::zeros(p, d), cfg)
+    }
+
+    /// Starts from a given `θ` (`p × d`).
+    pub fn with_theta(theta: DMatrix<f64>, cfg: RwrConfig) -> Result<Self> {
+        cfg.validate()?;
+        let policy = LinearGaussianPolicy::new(theta, cfg.sigma_init)?;
+        let (p, d) = (policy.n_features(), policy.n_actions());
+        Ok(Self {
+            tau: cfg.tau_init,
+            ln_forget: cfg.forgetting.ln(),
+            cfg,
+            policy,
+            stats: Stats::new(p, d),
+            log_scale: f64::NEG_INFINITY,
+            solver: Solver::new(p, d),
+        })
+    }
+
+    /// The configuration.
+    pub fn config(&self) -> &RwrConfig {
+        &self.cfg
+    }
+    /// The current policy `N(u | θᵀφ, σ² I)`.
+    pub fn policy(&self) -> &LinearGaussianPolicy {
+        &self.policy
+    }
+    /// `θ` (`p × d`).
+    pub fn theta(&self) -> &DMatrix<f64> {
+        self.policy.theta()
+    }
+    /// Exploration `σ`.
+    pub fn sigma(&self) -> f64 {
+        self.policy.sigma()
+    }
+    /// `τ` that new samples are weighted with.
+    pub fn tau(&self) -> f64 {
+        self.tau
+    }
+    /// Effective sample size `(Σw)²/Σw²` of the (decayed) statistics; 0 when empty.
+    pub fn ess(&self) -> f64 {
+        self.stats.ess()
+    }
+    /// `ln Σ w` of the (decayed) statistics, `−∞` when empty (the sum itself may not fit an f64).
+    pub fn log_sum_weight(&self) -> f64 {
+        self.stats.sw.ln() + self.log_scale
+    }
+
+    /// Mean action `θᵀφ` into `out`; see [`LinearGaussianPolicy::mean_into`].
+    pub fn mean_into(&self, phi: &[f64], out: &mut [f64]) -> Result<()> {
+        self.policy.mean_into(phi, out)
+    }
+
+    /// Exploratory action `u ~ N(θᵀφ, σ² I)` into `out` from the injected generator.
+    pub fn sample_into<R: Rng + ?Sized>(
+        &self,
+        phi: &[f64],
+        rng: &mut R,
+        out: &mut [f64],
+    ) -> Result<()> {
+        self.policy.sample_into(phi, rng, out)
+    }
+
+    /// Forgets all samples (keeps `θ`, `σ`, `τ`).
+    pub fn clear(&mut self) {
+        self.stats.clear();
+        self.log_scale = f64::NEG_INFINITY;
+    }
+
+    /// E-step for one sample `(φ, u, r)` with external weight `a ≥ 0`: decays the statistics by
+    /// the forgetting factor, then adds the sample with weight `a · exp(−τ r)` (eq. 25 before
+    /// normalisation). Fails, changing nothing, on wrong lengths, non-finite `φ`/`u`, or a
+    /// negative or non-finite `r` or `a`.
+    pub fn observe(&mut self, phi: &[f64], u: &[f64], r: f64, a: f64) -> Result<()> {
+        check_len("features", self.policy.n_features(), phi.len())?;
+        check_len("action", self.policy.n_actions(), u.len())?;
+        check_finite("features", phi)?;
+        check_finite("action", u)?;
+        check_cost(r)?;
+        check_ext(a)?;
+        self.log_scale += self.ln_forget;
+        let l = log_weight(self.tau, r, a);
+        if l == f64::NEG_INFINITY {
+            return Ok(());
+        }
+        if l > self.log_scale {
+            self.stats.scale((self.log_scale - l).exp());
+            self.log_scale = l;
+        }
+        self.stats.add((l - self.log_scale).exp(), phi, u, r);
+        Ok(())
+    }
+
+    /// M-step from the statistics: `θ` by eq. 23 (with ridge), `σ` by eq. 24 (floored, unless
+    /// off), `τ` by eq. 28 (and safeguards, unless fixed). Fails, changing nothing, when no
+    /// sample has weight or the Gram matrix is singular (too few samples and no ridge).
+    pub fn update(&mut self) -> Result<StepInfo> {
+        let msr = self.solver.solve(&self.stats, self.cfg.ridge)?;
+        let sigma = self.cfg.next_sigma(self.policy.sigma(), msr);
+        let (ess, mean_cost) = (self.stats.ess(), self.stats.mean_cost());
+        let tau_next = self.cfg.next_tau(self.tau, mean_cost, ess);
+        let info = StepInfo {
+            tau_used: self.tau,
+            tau_next,
+            sigma,
+            ess,
+            mean_cost,
+        };
+        self.policy.set(&self.solver.theta, sigma);
+        self.tau = tau_next;
+        Ok(info)
+    }
+}

@@ -1,0 +1,121 @@
+//! Gaussian policy linear in features (eq. 21): `π(u | s) = N(u | θᵀφ(s), σ² I)`.
+
+use crate::error::{Result, RwrError};
+use nalgebra::DMatrix;
+use rand::{Rng, RngExt};
+use rand_distr::StandardNormal;
+use serde::{Deserialize, Serialize};
+
+/// `π(u | s) = N(u | θᵀφ, σ² I)` with `θ` of shape `p × d` (`p` features, `d` action dims).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct LinearGaussianPolicy {
+    theta: DMatrix<f64>,
+    sigma: f64,
+}
+
+/// Fails unless `got == expected`.
+pub(crate) fn check_len(what: &'static str, expected: usize, got: usize) -> Result<()> {
+    if expected == got {
+        Ok(())
+    } else {
+        Err(RwrError::Dimension {
+            what,
+            expected,
+            got,
+        })
+    }
+}
+
+/// Fails if any value is NaN or infinite.
+pub(crate) fn check_finite(what: &'static str, v: &[f64]) -> Result<()> {
+    if v.iter().all(|x| x.is_finite()) {
+        Ok(())
+    } else {
+        Err(RwrError::NonFinite(what))
+    }
+}
+
+impl LinearGaussianPolicy {
+    /// A policy with the given `θ` (`p × d`, `p, d ≥ 1`, finite) and `σ > 0`.
+    pub fn new(theta: DMatrix<f64>, sigma: f64) -> Result<Self> {
+        if theta.nrows() == 0 || theta.ncols() == 0 {
+            return Err(RwrError::Dimension {
+                what: "theta",
+                expected: 1,
+                got: 0,
+            });
+        }
+        check_finite("theta", theta.as_slice())?;
+        if !(sigma.is_finite() && sigma > 0.0) {
+            return Err(RwrError::InvalidConfig(format!(
+                "sigma must be > 0, got {sigma}"
+            )));
+        }
+        Ok(Self { theta, sigma })
+    }
+
+    /// `θ = 0` with `p` features, `d` action dimensions and the given `σ`.
+    pub fn zeros(p: usize, d: usize, sigma: f64) -> Result<Self> {
+        Self::new(DMatrix::zeros(p, d), sigma)
+    }
+
+    /// Number of features `p`.
+    pub fn n_features(&self) -> usize {
+        self.theta.nrows()
+    }
+
+    /// Number of action dimensions `d`.
+    pub fn n_actions(&self) -> usize {
+        self.theta.ncols()
+    }
+
+    /// Parameters `θ` (`p × d`): the mean action is `θᵀφ`.
+    pub fn theta(&self) -> &DMatrix<f64> {
+        &self.theta
+    }
+
+    /// Exploration standard deviation `σ` (action units).
+    pub fn sigma(&self) -> f64 {
+        self.sigma
+    }
+
+    /// Overwrites `θ` and `σ` in place (no allocation); the caller guarantees shape and values.
+    pub(crate) fn set(&mut self, theta: &DMatrix<f64>, sigma: f64) {
+        self.theta.copy_from(theta);
+        self.sigma = sigma;
+    }
+
+    /// Writes the mean action `μ = θᵀφ` into `out` (length `d`). Fails on wrong lengths or
+    /// non-finite features. Does not allocate.
+    pub fn mean_into(&self, phi: &[f64], out: &mut [f64]) -> Result<()> {
+        check_len("features", self.n_features(), phi.len())?;
+        check_len("action out", self.n_actions(), out.len())?;
+        check_finite("features", phi)?;
+        for (j, o) in out.iter_mut().enumerate() {
+            *o = self
+                .theta
+                .column(j)
+                .iter()
+                .zip(phi)
+                .map(|(t, f)| t * f)
+                .sum();
+        }
+        Ok(())
+    }
+
+    /// Draws an action `u ~ N(θᵀφ, σ² I)` into `out` from the injected generator. Same
+    /// generator state, same action. Fails like [`Self::mean_into`]. Does not allocate.
+    pub fn sample_into<R: Rng + ?Sized>(
+        &self,
+        phi: &[f64],
+        rng: &mut R,
+        out: &mut [f64],
+    ) -> Result<()> {
+        self.mean_into(phi, out)?;
+        for o in out.iter_mut() {
+            let e: f64 = rng.sample(StandardNormal);
+            *o += self.sigma * e;
+        }
+        Ok(())
+    }
+}
