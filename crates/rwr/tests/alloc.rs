@@ -1,0 +1,56 @@
+//! The online hot path (observe, update, mean, sample) does not allocate.
+
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use rwr::{OnlineRwr, RwrConfig};
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+struct Counting;
+static ALLOCS: AtomicUsize = AtomicUsize::new(0);
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        ALLOCS.fetch_add(1, Ordering::SeqCst);
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        unsafe { System.dealloc(ptr, layout) }
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        ALLOCS.fetch_add(1, Ordering::SeqCst);
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+#[test]
+fn online_observe_update_and_sampling_do_not_allocate() {
+    let cfg = RwrConfig {
+        forgetting: 0.99,
+        tau_max: Some(1e3),
+        min_ess: 5.0,
+        ..Default::default()
+    };
+    let mut online = OnlineRwr::new(4, 3, cfg).unwrap();
+    let mut rng = ChaCha8Rng::seed_from_u64(0);
+    let (mut phi, mut u) = ([0.0, 0.0, 0.0, 1.0], [0.0; 3]);
+    let before = ALLOCS.load(Ordering::SeqCst);
+    for k in 0..500 {
+        let s = k as f64 * 0.01;
+        phi[0] = s.sin();
+        phi[1] = s.cos();
+        phi[2] = s;
+        online.sample_into(&phi, &mut rng, &mut u).unwrap();
+        let r = u.iter().map(|x| (x - 0.3).powi(2)).sum::<f64>();
+        online.observe(&phi, &u, r, 0.7).unwrap();
+        if k >= 10 {
+            online.update().unwrap();
+        }
+        online.mean_into(&phi, &mut u).unwrap();
+    }
+    let _ = online.observe(&phi, &u, -1.0, 1.0); // the error path does not allocate either
+    assert_eq!(ALLOCS.load(Ordering::SeqCst) - before, 0);
+}
