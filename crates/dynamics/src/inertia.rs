@@ -1,0 +1,165 @@
+//! Spatial inertias: the rigid-body inertia of one link and the articulated-body inertia of ABA.
+
+use crate::spatial::{skew, Force, Motion, Pose};
+use nalgebra::{Matrix3, Vector3};
+use serde::{Deserialize, Serialize};
+
+/// Rigid-body inertia of a link in its own frame: mass `mass` (kg), first moment `h = m·c`
+/// (kg·m, `c` the centre of mass) and rotational inertia `inertia` about the frame **origin**
+/// (kg·m²). Keeping `h` rather than `c` allows the zero-mass links of identified base parameters.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Inertia {
+    pub mass: f64,
+    pub h: Vector3<f64>,
+    pub inertia: Matrix3<f64>,
+}
+
+impl Default for Inertia {
+    fn default() -> Self {
+        Self::zero()
+    }
+}
+
+impl Inertia {
+    /// A massless, inertia-less body.
+    pub fn zero() -> Self {
+        Self {
+            mass: 0.0,
+            h: Vector3::zeros(),
+            inertia: Matrix3::zeros(),
+        }
+    }
+    /// From mass, centre of mass `com` (m) and inertia about the centre of mass (kg·m²).
+    pub fn from_com(mass: f64, com: Vector3<f64>, inertia_com: Matrix3<f64>) -> Self {
+        // Parallel axis theorem: I_o = I_c + m (|c|² I − c cᵀ).
+        let i_o =
+            inertia_com + (Matrix3::identity() * com.norm_squared() - com * com.transpose()) * mass;
+        Self {
+            mass,
+            h: com * mass,
+            inertia: i_o,
+        }
+    }
+    /// From mass, first moment `mcm = m·c` (kg·m) and inertia about the frame origin (kg·m²).
+    pub fn from_origin(mass: f64, mcm: Vector3<f64>, inertia_origin: Matrix3<f64>) -> Self {
+        Self {
+            mass,
+            h: mcm,
+            inertia: inertia_origin,
+        }
+    }
+    /// Centre of mass (m), or the origin for a massless body.
+    pub fn com(&self) -> Vector3<f64> {
+        if self.mass > 0.0 {
+            self.h / self.mass
+        } else {
+            Vector3::zeros()
+        }
+    }
+    /// Rotational inertia about the centre of mass (kg·m²); about the origin if massless.
+    pub fn inertia_com(&self) -> Matrix3<f64> {
+        let c = self.com();
+        self.inertia - (Matrix3::identity() * c.norm_squared() - c * c.transpose()) * self.mass
+    }
+    /// Momentum `I v` of the body moving with `v` (same frame).
+    #[inline]
+    pub fn mul_motion(&self, v: &Motion) -> Force {
+        Force {
+            ang: self.inertia * v.ang + self.h.cross(&v.lin),
+            lin: v.lin * self.mass - self.h.cross(&v.ang),
+        }
+    }
+    /// This inertia (given in a child frame) expressed in the parent frame of `pose`.
+    #[inline]
+    pub fn to_parent(&self, pose: &Pose) -> Inertia {
+        let r = &pose.rot;
+        let p = &pose.trans;
+        let hr = r * self.h;
+        let ir = r * self.inertia * r.transpose();
+        // I_p = R I Rᵀ − [Rh]×[p]× − [p]×[Rh]× − m [p]×[p]×, expanded with [a]×[b]× = b aᵀ − (a·b) 1.
+        let cross = p * hr.transpose() + hr * p.transpose();
+        let diag = 2.0 * hr.dot(p) + self.mass * p.norm_squared();
+        Inertia {
+            mass: self.mass,
+            h: hr + p * self.mass,
+            inertia: ir - cross - p * p.transpose() * self.mass + Matrix3::identity() * diag,
+        }
+    }
+    /// Sum of two inertias in the same frame.
+    pub fn add(&self, o: &Inertia) -> Inertia {
+        Inertia {
+            mass: self.mass + o.mass,
+            h: self.h + o.h,
+            inertia: self.inertia + o.inertia,
+        }
+    }
+}
+
+/// Articulated-body inertia, a symmetric 6×6 map from motion to force kept in 3×3 blocks:
+/// `n = A ω + B v`, `f = Bᵀ ω + C v`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ArticulatedInertia {
+    pub a: Matrix3<f64>,
+    pub b: Matrix3<f64>,
+    pub c: Matrix3<f64>,
+}
+
+impl Default for ArticulatedInertia {
+    fn default() -> Self {
+        Self {
+            a: Matrix3::zeros(),
+            b: Matrix3::zeros(),
+            c: Matrix3::zeros(),
+        }
+    }
+}
+
+impl ArticulatedInertia {
+    /// The rigid inertia as a 6×6 block matrix.
+    #[inline]
+    pub fn from_rigid(i: &Inertia) -> Self {
+        Self {
+            a: i.inertia,
+            b: skew(&i.h),
+            c: Matrix3::identity() * i.mass,
+        }
+    }
+    #[inline]
+    pub fn mul_motion(&self, v: &Motion) -> Force {
+        Force {
+            ang: self.a * v.ang + self.b * v.lin,
+            lin: self.b.tr_mul(&v.ang) + self.c * v.lin,
+        }
+    }
+    /// `self − U Uᵀ / d` with `U = (ua, ul)`: removes the joint's own degree of freedom.
+    #[inline]
+    pub fn sub_rank1(&mut self, ua: &Vector3<f64>, ul: &Vector3<f64>, inv_d: f64) {
+        self.a -= ua * ua.transpose() * inv_d;
+        self.b -= ua * ul.transpose() * inv_d;
+        self.c -= ul * ul.transpose() * inv_d;
+    }
+    #[inline]
+    pub fn add_assign(&mut self, o: &ArticulatedInertia) {
+        self.a += o.a;
+        self.b += o.b;
+        self.c += o.c;
+    }
+    /// This inertia (given in a child frame) expressed in the parent frame of `pose`:
+    /// `ᵖX*_c I ᶜX_p`, computed as a rotation followed by a shift with `P = [p]×`.
+    #[inline]
+    pub fn to_parent(&self, pose: &Pose) -> ArticulatedInertia {
+        let r = &pose.rot;
+        let rt = r.transpose();
+        let a = r * self.a * rt;
+        let b = r * self.b * rt;
+        let c = r * self.c * rt;
+        let p = skew(&pose.trans);
+        let pc = p * c;
+        let bp = b * p;
+        ArticulatedInertia {
+            a: a - bp - bp.transpose() - pc * p,
+            b: b + pc,
+            c,
+        }
+    }
+}

@@ -1,0 +1,261 @@
+//! The immutable robot model: a serial chain of revolute joints with full spatial inertias.
+
+use crate::error::{check_finite, DynamicsError, Result};
+use crate::inertia::Inertia;
+use crate::spatial::Pose;
+use nalgebra::Vector3;
+use serde::{Deserialize, Serialize};
+
+/// Joint friction `τ_f(q̇) = viscous·q̇ + coulomb·tanh(q̇ / coulomb_velocity)` (N·m): viscous plus a
+/// Coulomb term smoothed over `coulomb_velocity` so that the dynamics stay differentiable.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Friction {
+    /// Viscous coefficient (N·m·s/rad). Default 0.
+    pub viscous: f64,
+    /// Coulomb friction level (N·m). Default 0.
+    pub coulomb: f64,
+    /// Smoothing velocity of the Coulomb term (rad/s). Default 0.01.
+    pub coulomb_velocity: f64,
+}
+
+impl Default for Friction {
+    fn default() -> Self {
+        Self {
+            viscous: 0.0,
+            coulomb: 0.0,
+            coulomb_velocity: 0.01,
+        }
+    }
+}
+
+impl Friction {
+    /// Friction torque (N·m) at joint velocity `qd` (rad/s); it opposes the motion.
+    #[inline]
+    pub fn torque(&self, qd: f64) -> f64 {
+        let coulomb = if self.coulomb != 0.0 {
+            self.coulomb * (qd / self.coulomb_velocity).tanh()
+        } else {
+            0.0
+        };
+        self.viscous * qd + coulomb
+    }
+}
+
+/// Joint limits. Infinite values mean "no limit".
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct JointLimits {
+    /// Lower position limit (rad). Default −∞.
+    pub q_min: f64,
+    /// Upper position limit (rad). Default +∞.
+    pub q_max: f64,
+    /// Velocity limit (rad/s), informational. Default +∞.
+    pub qd_max: f64,
+    /// Torque limit (N·m): commands are clipped to ±`tau_max`. Default +∞.
+    pub tau_max: f64,
+}
+
+impl Default for JointLimits {
+    fn default() -> Self {
+        Self {
+            q_min: f64::NEG_INFINITY,
+            q_max: f64::INFINITY,
+            qd_max: f64::INFINITY,
+            tau_max: f64::INFINITY,
+        }
+    }
+}
+
+/// One link of the chain and the revolute joint that moves it.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Link {
+    /// Link (body) name.
+    pub name: String,
+    /// Name of the joint that moves this link.
+    pub joint_name: String,
+    /// Pose of the joint frame in the parent link's frame at `q = 0` (the parent of link 0 is the
+    /// world/base frame).
+    pub origin: Pose,
+    /// Joint axis in the joint frame (unit vector; normalised when the model is built).
+    pub axis: Vector3<f64>,
+    /// Inertia of the link in the joint frame.
+    pub inertia: Inertia,
+    pub friction: Friction,
+    pub limits: JointLimits,
+}
+
+/// Everything that defines a robot; [`Model::new`] validates it once.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ModelSpec {
+    pub name: String,
+    /// Links from base to tip.
+    pub links: Vec<Link>,
+    /// End-effector point in the last link's frame (m).
+    pub ee_offset: Vector3<f64>,
+    /// Gravity in the world frame (m/s²). Default `(0, 0, −9.81)`.
+    pub gravity: Vector3<f64>,
+    /// World axes (0 = x, 1 = y, 2 = z) of the end-effector position that form the task space.
+    pub task_axes: Vec<usize>,
+    /// Default start posture (rad).
+    pub q_start: Vec<f64>,
+    /// Rest posture of the nominal null-space behaviour (rad).
+    pub q_rest: Vec<f64>,
+    /// Joint PD gains: stiffness (N·m/rad) and damping (N·m·s/rad).
+    pub kp: Vec<f64>,
+    pub kd: Vec<f64>,
+}
+
+/// Standard gravity along −z (m/s²), the URDF/ROS convention.
+pub const GRAVITY: Vector3<f64> = Vector3::new(0.0, 0.0, -9.81);
+
+/// An immutable, validated robot model. Build with [`Model::new`]; evaluate with a [`crate::Data`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Model {
+    spec: ModelSpec,
+}
+
+impl Model {
+    /// Validates `spec` (finite values, non-negative masses, symmetric inertias, ordered limits,
+    /// consistent lengths) and normalises the joint axes.
+    pub fn new(mut spec: ModelSpec) -> Result<Self> {
+        let n = spec.links.len();
+        let bad = |m: String| Err(DynamicsError::InvalidModel(m));
+        if n == 0 {
+            return bad("a model needs at least one revolute joint".into());
+        }
+        for (what, v) in [
+            ("q_start", &spec.q_start),
+            ("q_rest", &spec.q_rest),
+            ("kp", &spec.kp),
+            ("kd", &spec.kd),
+        ] {
+            if v.len() != n {
+                return bad(format!("{what} has {} entries for {n} joints", v.len()));
+            }
+            check_finite(what, v)?;
+        }
+        check_finite("gravity", spec.gravity.as_slice())?;
+        check_finite("ee_offset", spec.ee_offset.as_slice())?;
+        if spec.task_axes.is_empty()
+            || spec.task_axes.iter().any(|&a| a > 2)
+            || (1..spec.task_axes.len()).any(|i| spec.task_axes[..i].contains(&spec.task_axes[i]))
+        {
+            return bad(format!(
+                "task_axes {:?} must be distinct values in 0..=2",
+                spec.task_axes
+            ));
+        }
+        for l in spec.links.iter_mut() {
+            let ctx = |m: &str| format!("link '{}' (joint '{}'): {m}", l.name, l.joint_name);
+            let all = [
+                l.origin.rot.as_slice(),
+                l.origin.trans.as_slice(),
+                l.axis.as_slice(),
+            ];
+            if all.iter().any(|s| s.iter().any(|x| !x.is_finite())) {
+                return bad(ctx("non-finite origin or axis"));
+            }
+            if (l.origin.rot.transpose() * l.origin.rot - nalgebra::Matrix3::identity()).amax()
+                > 1e-9
+                || l.origin.rot.determinant() < 0.0
+            {
+                return bad(ctx("origin rotation is not a proper rotation matrix"));
+            }
+            let norm = l.axis.norm();
+            if norm < 1e-12 {
+                return bad(ctx("zero joint axis"));
+            }
+            l.axis /= norm;
+            let i = &l.inertia;
+            let fin = i.mass.is_finite()
+                && i.h.iter().all(|x| x.is_finite())
+                && i.inertia.iter().all(|x| x.is_finite());
+            if !fin || i.mass < 0.0 {
+                return bad(ctx(&format!(
+                    "mass {} must be finite and non-negative",
+                    i.mass
+                )));
+            }
+            if (i.inertia - i.inertia.transpose()).amax() > 1e-12 * (1.0 + i.inertia.amax()) {
+                return bad(ctx("inertia matrix is not symmetric"));
+            }
+            if i.mass == 0.0 && i.h.norm() > 0.0 {
+                return bad(ctx("zero mass with a non-zero first moment"));
+            }
+            let f = &l.friction;
+            if !(f.viscous >= 0.0 && f.coulomb >= 0.0 && f.coulomb_velocity > 0.0)
+                || !(f.viscous.is_finite()
+                    && f.coulomb.is_finite()
+                    && f.coulomb_velocity.is_finite())
+            {
+                return bad(ctx(
+                    "friction coefficients must be finite, ≥ 0 (coulomb_velocity > 0)",
+                ));
+            }
+            let lim = &l.limits;
+            if lim.q_min.is_nan() || lim.q_max.is_nan() || lim.q_min > lim.q_max {
+                return bad(ctx(&format!(
+                    "joint limits [{}, {}] are not ordered",
+                    lim.q_min, lim.q_max
+                )));
+            }
+            if !(lim.tau_max > 0.0) || !(lim.qd_max > 0.0) {
+                return bad(ctx("tau_max and qd_max must be > 0"));
+            }
+        }
+        Ok(Self { spec })
+    }
+
+    /// The validated specification (clone and edit it to make a variant of this robot).
+    pub fn spec(&self) -> &ModelSpec {
+        &self.spec
+    }
+    pub fn name(&self) -> &str {
+        &self.spec.name
+    }
+    /// Number of joints `n`.
+    #[inline]
+    pub fn nq(&self) -> usize {
+        self.spec.links.len()
+    }
+    /// Task-space dimension `m`.
+    #[inline]
+    pub fn task_dim(&self) -> usize {
+        self.spec.task_axes.len()
+    }
+    #[inline]
+    pub fn links(&self) -> &[Link] {
+        &self.spec.links
+    }
+    #[inline]
+    pub fn gravity(&self) -> Vector3<f64> {
+        self.spec.gravity
+    }
+    pub fn task_axes(&self) -> &[usize] {
+        &self.spec.task_axes
+    }
+    /// Friction torques `τ_f(q̇)` (N·m) into `out`.
+    pub fn friction(&self, qd: &[f64], out: &mut [f64]) {
+        for ((o, l), &v) in out.iter_mut().zip(&self.spec.links).zip(qd) {
+            *o = l.friction.torque(v);
+        }
+    }
+    pub fn q_min(&self) -> impl Iterator<Item = f64> + '_ {
+        self.spec.links.iter().map(|l| l.limits.q_min)
+    }
+    pub fn q_max(&self) -> impl Iterator<Item = f64> + '_ {
+        self.spec.links.iter().map(|l| l.limits.q_max)
+    }
+    pub fn tau_max(&self) -> impl Iterator<Item = f64> + '_ {
+        self.spec.links.iter().map(|l| l.limits.tau_max)
+    }
+    /// Total mass (kg).
+    pub fn total_mass(&self) -> f64 {
+        self.spec.links.iter().map(|l| l.inertia.mass).sum()
+    }
+    /// A fresh workspace for this model.
+    pub fn data(&self) -> crate::Data {
+        crate::Data::new(self)
+    }
+}
