@@ -139,8 +139,12 @@ impl BatchRwr {
         let theta = &self.solver.theta;
         let mut sq = 0.0;
         for i in 0..n {
-            let res = u.row(i) - phi.row(i) * theta;
-            sq += self.weights[i] * res.norm_squared();
+            let mut res2 = 0.0;
+            for k in 0..d {
+                let mean: f64 = (0..p).map(|j| phi[(i, j)] * theta[(j, k)]).sum();
+                res2 += (u[(i, k)] - mean).powi(2);
+            }
+            sq += self.weights[i] * res2;
         }
         let sigma = self
             .cfg

@@ -49,6 +49,9 @@
 //! # Ok::<(), rwr::RwrError>(())
 //! ```
 
+// Index loops over small dense matrices read like the maths.
+#![allow(clippy::needless_range_loop)]
+
 mod batch;
 mod config;
 mod error;

@@ -93,7 +93,7 @@ impl Solver {
     /// mean squared residual per action dimension `Σ w ‖u − θᵀφ‖² / (d Σw)` (eq. 24).
     /// Only the lower triangle of `G` is read. Does not allocate.
     pub fn solve(&mut self, s: &Stats, ridge: f64) -> Result<f64> {
-        if !(s.sw > 0.0) {
+        if s.sw.is_nan() || s.sw <= 0.0 {
             return Err(RwrError::NoWeight);
         }
         let p = self.a.nrows();

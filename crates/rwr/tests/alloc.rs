@@ -1,4 +1,5 @@
 //! The online hot path (observe, update, mean, sample) does not allocate.
+#![allow(clippy::needless_range_loop)]
 
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;

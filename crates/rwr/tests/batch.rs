@@ -1,4 +1,5 @@
 //! Batch EM (Algorithm 2) against direct computations of eq. 23, 24, 25 and 28.
+#![allow(clippy::needless_range_loop)]
 
 mod common;
 

@@ -1,4 +1,5 @@
 //! Config validation, serde, and the optional safeguards (fixed τ, τ cap, ESS floor, σ floor).
+#![allow(clippy::needless_range_loop)]
 
 mod common;
 

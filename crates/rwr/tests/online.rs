@@ -1,4 +1,5 @@
 //! The online form against the batch form, forgetting, bad input, seeded sampling.
+#![allow(clippy::needless_range_loop)]
 
 mod common;
 

@@ -1,6 +1,7 @@
 //! A redundant linear problem: `ẍ = A u + b` (2-D `ẍ`, 3-D `u`), cost `‖u − u0‖²`, learning
 //! from relabelled samples `φ = [ẍ_observed, 1] → u`. RWR must find the minimum-cost inverse
 //! `u*(ẍ) = A⁺(ẍ − b) + (I − A⁺A) u0`; plain regression of the same data must not.
+#![allow(clippy::needless_range_loop)]
 
 use nalgebra::{DMatrix, Matrix2x3, Vector2, Vector3};
 use rand::{RngExt, SeedableRng};
