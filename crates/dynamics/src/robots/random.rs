@@ -59,7 +59,7 @@ pub fn random_arm(n: usize, seed: u64, friction: bool) -> Model {
                 Friction {
                     viscous: rng.random_range(0.0..0.5),
                     coulomb: rng.random_range(0.0..0.5),
-                    coulomb_velocity: 0.05,
+                    ..Friction::default()
                 }
             } else {
                 Friction::default()

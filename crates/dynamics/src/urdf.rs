@@ -1,1 +1,0 @@
-//! URDF import and export.

@@ -1,0 +1,104 @@
+//! URDF export of a [`Model`].
+
+use crate::model::Model;
+use crate::spatial::matrix_to_rpy;
+use nalgebra::{Matrix3, Vector3};
+use std::fmt::Write;
+
+/// Shortest decimal that parses back to the same `f64`.
+fn num(x: f64) -> String {
+    format!("{x:?}")
+}
+
+fn vec3(v: &Vector3<f64>) -> String {
+    format!("{} {} {}", num(v.x), num(v.y), num(v.z))
+}
+
+fn origin(xyz: &Vector3<f64>, rot: &Matrix3<f64>) -> String {
+    let (r, p, y) = matrix_to_rpy(rot);
+    format!(
+        "<origin xyz=\"{}\" rpy=\"{} {} {}\"/>",
+        vec3(xyz),
+        num(r),
+        num(p),
+        num(y)
+    )
+}
+
+/// The model as a URDF document. Gravity is not part of URDF: the model's is assumed to be the
+/// URDF convention (9.81 m/s² along −z). Postures, gains and task axes are not exported.
+pub fn to_urdf(model: &Model) -> String {
+    let spec = model.spec();
+    let mut s = String::new();
+    let _ = writeln!(s, "<?xml version=\"1.0\"?>");
+    let _ = writeln!(s, "<!-- {} exported by osrl -->", spec.name);
+    let _ = writeln!(s, "<robot name=\"{}\">", spec.name);
+    let _ = writeln!(s, "  <link name=\"base_link\"/>");
+    let mut parent = "base_link".to_string();
+    for l in &spec.links {
+        let i = &l.inertia;
+        let ic = i.inertia_com();
+        let _ = writeln!(s, "  <link name=\"{}\">", l.name);
+        let _ = writeln!(s, "    <inertial>");
+        let _ = writeln!(
+            s,
+            "      <origin xyz=\"{}\" rpy=\"0 0 0\"/>",
+            vec3(&i.com())
+        );
+        let _ = writeln!(s, "      <mass value=\"{}\"/>", num(i.mass));
+        let _ = writeln!(
+            s,
+            "      <inertia ixx=\"{}\" ixy=\"{}\" ixz=\"{}\" iyy=\"{}\" iyz=\"{}\" izz=\"{}\"/>",
+            num(ic[(0, 0)]),
+            num(ic[(0, 1)]),
+            num(ic[(0, 2)]),
+            num(ic[(1, 1)]),
+            num(ic[(1, 2)]),
+            num(ic[(2, 2)])
+        );
+        let _ = writeln!(s, "    </inertial>");
+        let _ = writeln!(s, "  </link>");
+        let lim = &l.limits;
+        let kind = if lim.q_min.is_finite() && lim.q_max.is_finite() {
+            "revolute"
+        } else {
+            "continuous"
+        };
+        let _ = writeln!(s, "  <joint name=\"{}\" type=\"{kind}\">", l.joint_name);
+        let _ = writeln!(s, "    <parent link=\"{parent}\"/>");
+        let _ = writeln!(s, "    <child link=\"{}\"/>", l.name);
+        let _ = writeln!(s, "    {}", origin(&l.origin.trans, &l.origin.rot));
+        let _ = writeln!(s, "    <axis xyz=\"{}\"/>", vec3(&l.axis));
+        let finite_or = |x: f64, d: f64| if x.is_finite() { x } else { d };
+        let mut limit = format!(
+            "effort=\"{}\" velocity=\"{}\"",
+            num(finite_or(lim.tau_max, 1e6)),
+            num(finite_or(lim.qd_max, 1e6))
+        );
+        if kind == "revolute" {
+            limit = format!(
+                "lower=\"{}\" upper=\"{}\" {limit}",
+                num(lim.q_min),
+                num(lim.q_max)
+            );
+        }
+        let _ = writeln!(s, "    <limit {limit}/>");
+        let f = &l.friction;
+        let _ = writeln!(
+            s,
+            "    <dynamics damping=\"{}\" friction=\"{}\"/>",
+            num(f.viscous),
+            num(f.coulomb)
+        );
+        let _ = writeln!(s, "  </joint>");
+        parent = l.name.clone();
+    }
+    let _ = writeln!(s, "  <link name=\"ee_link\"/>");
+    let _ = writeln!(s, "  <joint name=\"ee_joint\" type=\"fixed\">");
+    let _ = writeln!(s, "    <parent link=\"{parent}\"/>");
+    let _ = writeln!(s, "    <child link=\"ee_link\"/>");
+    let _ = writeln!(s, "    {}", origin(&spec.ee_offset, &Matrix3::identity()));
+    let _ = writeln!(s, "  </joint>");
+    let _ = writeln!(s, "</robot>");
+    s
+}
