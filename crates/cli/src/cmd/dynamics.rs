@@ -1,0 +1,60 @@
+//! `osrl dynamics`: kinematics and dynamics of a robot at one state.
+
+use crate::util::{load_robot, parse_vec, print_json, rows};
+use anyhow::Result;
+use osrl_dynamics::{compute_all, forward_dynamics, rnea};
+
+#[derive(clap::Args)]
+pub struct Args {
+    /// Built-in robot (planar3, sarcos7) or a URDF file.
+    #[arg(long)]
+    pub robot: String,
+    /// Joint positions (rad), comma-separated.
+    #[arg(long, allow_hyphen_values = true)]
+    pub q: String,
+    /// Joint velocities (rad/s); default zeros.
+    #[arg(long, allow_hyphen_values = true)]
+    pub qd: Option<String>,
+    /// Joint accelerations (rad/s²) for `tau`; default zeros.
+    #[arg(long, allow_hyphen_values = true)]
+    pub qdd: Option<String>,
+    /// Joint torques (N·m): adds `qdd_forward`, the forward dynamics with friction.
+    #[arg(long, allow_hyphen_values = true)]
+    pub u: Option<String>,
+    /// Only the JSON line.
+    #[arg(long)]
+    pub json: bool,
+}
+
+pub fn run(a: Args) -> Result<()> {
+    let model = load_robot(&a.robot)?;
+    let n = model.nq();
+    let opt = |flag: &str, v: &Option<String>| v.as_deref().map_or(Ok(vec![0.0; n]), |t| parse_vec(flag, t, n));
+    let q = parse_vec("q", &a.q, n)?;
+    let qd = opt("qd", &a.qd)?;
+    let qdd = opt("qdd", &a.qdd)?;
+    let mut data = model.data();
+    compute_all(&model, &mut data, &q, &qd)?;
+    let mut out = serde_json::json!({
+        "robot": model.name(),
+        "x": data.ee_pos.as_slice(),
+        "xd": data.ee_vel.as_slice(),
+        "J": rows(&data.jac),
+        "Jdot_qd": data.jdot_qd.as_slice(),
+        "task_axes": model.task_axes(),
+        "M": rows(&data.mass),
+        "g": data.g.as_slice(),
+        "h": data.h.as_slice(),
+        "friction": data.friction.as_slice(),
+    });
+    out["tau"] = rnea(&model, &mut data, &q, &qd, &qdd)?.as_slice().into();
+    if let Some(u) = &a.u {
+        let u = parse_vec("u", u, n)?;
+        out["qdd_forward"] = forward_dynamics(&model, &mut data, &q, &qd, &u)?.as_slice().into();
+    }
+    if !a.json {
+        println!("{}: x = {:?}", model.name(), data.ee_pos.as_slice());
+    }
+    print_json(&out);
+    Ok(())
+}
