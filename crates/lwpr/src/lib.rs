@@ -1,1 +1,68 @@
-//! placeholder: see the crate's issue
+//! Locally Weighted Projection Regression (LWPR): incremental, online nonlinear regression by
+//! locally linear models (Vijayakumar, D'Souza & Schaal, *Neural Computation* 17, 2005), a
+//! faithful reimplementation of the reference library of Klanke, Vijayakumar & Schaal
+//! (JMLR 2008) as specified in `shared/LWPR.md`.
+//!
+//! Each receptive field (RF) has a centre `c` and a distance metric `D = MᵀM`; its activation is
+//! `w = K((x − c)ᵀ D (x − c))` (Gaussian or BiSquare kernel) and it fits a local linear model by
+//! incremental partial least squares (PLS) that adds projection directions as needed. `D` is
+//! learned by gradient descent on a leave-one-out cost (optionally with IDBD meta learning of the
+//! rates); new RFs appear where no RF is active enough (`w_gen`), overlapping ones are pruned
+//! (`w_prune`). The prediction is the activation-weighted blend `ŷ = Σ w_k ŷ_k / Σ w_k`.
+//!
+//! Beyond the reference library, for the learned operational space controller:
+//! - **shared receptive fields** ([`LwprConfig::shared_rfs`]): one partition for all outputs,
+//!   each RF regressing every output (its own PLS per output; the metric descends the mean of the
+//!   outputs' leave-one-out costs);
+//! - **localisation on a subset of inputs** ([`LwprConfig::kernel_dims`],
+//!   [`LwprConfig::regression_dims`]): the kernel lives on some inputs (paper eq. 33), the local
+//!   regression on others (eq. 32);
+//! - **read access to the partition** ([`Lwpr::activations`], [`Lwpr::rfs`], [`RfView`]) with
+//!   stable [`RfId`]s and [`RfEvent`]s when RFs are added or pruned;
+//! - **no silent zero**: prediction without any active RF is [`LwprError::NoActiveRf`].
+//!
+//! Update and predict reuse buffers held by the model and do not allocate in steady state.
+//! Models save and load bit-exactly ([`Lwpr::save`], [`Lwpr::load`]).
+//!
+//! # Example
+//! ```
+//! use lwpr::{Lwpr, LwprConfig};
+//! use rand::{RngExt, SeedableRng};
+//!
+//! let cfg = LwprConfig { init_d: lwpr::MetricInit::Scalar(20.0), ..Default::default() };
+//! let mut model = Lwpr::new(1, 1, &cfg)?;
+//! let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(0);
+//! for _ in 0..5000 {
+//!     let x: f64 = rng.random_range(-1.0..1.0);
+//!     model.update(&[x], &[(3.0 * x).sin()])?;
+//! }
+//! let mut y = [0.0];
+//! model.predict(&[0.5], &mut y)?;
+//! assert!((y[0] - 1.5f64.sin()).abs() < 0.05);
+//! // Far outside the data there is no support, and the model says so:
+//! assert!(matches!(model.predict(&[40.0], &mut y), Err(lwpr::LwprError::NoActiveRf { .. })));
+//! # Ok::<(), lwpr::LwprError>(())
+//! ```
+
+mod config;
+mod error;
+mod io;
+mod metric;
+mod model;
+pub mod params;
+mod partition;
+mod pls;
+mod predict;
+mod rf;
+mod scratch;
+
+pub use config::{Kernel, LwprConfig, MetricInit, Norm, NormKeyword};
+pub use error::LwprError;
+pub use io::{FORMAT_VERSION, MAGIC};
+pub use model::{Lwpr, UpdateInfo};
+pub use params::Params;
+pub use partition::{Activation, LocalModel, RfEvent, RfId, RfView};
+pub use predict::Support;
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,162 @@
+//! The user-facing configuration: every parameter of the reference library with its default.
+//!
+//! Field names are the snake-case parameter names of `shared/LWPR.md`, so a TOML or JSON file
+//! maps onto [`LwprConfig`] directly; unknown keys are rejected. [`LwprConfig::validate`] runs
+//! once, in [`crate::Lwpr::new`], and resolves the config into [`crate::params::Params`].
+
+use serde::{Deserialize, Serialize};
+
+/// The kernel turning the distance `q = (x − c)ᵀ D (x − c)` into an activation `w`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum Kernel {
+    /// `w = exp(−q/2)`.
+    #[default]
+    Gaussian,
+    /// `w = (1 − q/4)²` for `q < 4`, else 0.
+    Bisquare,
+}
+
+/// The initial distance metric `D` of a new receptive field, in normalised input units.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum MetricInit {
+    /// `r·I`.
+    Scalar(f64),
+    /// A diagonal matrix with these entries (one per kernel dimension).
+    Diagonal(Vec<f64>),
+    /// A full symmetric positive definite matrix, row by row (needs `diag_only = false`).
+    Full(Vec<Vec<f64>>),
+}
+
+/// Marker for `"std"` in [`Norm`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum NormKeyword {
+    /// The standard deviation of the training data, per dimension.
+    Std,
+}
+
+/// Normalisation divisors for inputs or outputs (no centring).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum Norm {
+    /// The same divisor for every dimension.
+    Scalar(f64),
+    /// One divisor per dimension.
+    List(Vec<f64>),
+    /// `"std"`: the data's standard deviation; must be resolved with
+    /// [`LwprConfig::resolve_std`] before building a model.
+    Keyword(NormKeyword),
+}
+
+impl Default for Norm {
+    fn default() -> Self {
+        Norm::Scalar(1.0)
+    }
+}
+
+/// All LWPR parameters. Defaults are the reference library's (`LwprConfig::default()`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct LwprConfig {
+    /// Distance metric `D = MᵀM` of a new receptive field (normalised input units⁻²).
+    /// Default `25·I` (so `M = 5·I`).
+    pub init_d: MetricInit,
+    /// Learning rate of every element of `M`. Default 50.
+    pub init_alpha: f64,
+    /// Keep `D`, `M`, `alpha` diagonal. Default true.
+    pub diag_only: bool,
+    /// Learn the distance metric at all. Default true.
+    pub update_d: bool,
+    /// Second-order (IDBD) adaptation of the learning rates. Default false.
+    pub meta: bool,
+    /// Meta learning rate. Default 250.
+    pub meta_rate: f64,
+    /// Smoothness penalty `γ`, used as `γ / n` with `n` the number of kernel dimensions.
+    /// Default 1e-6.
+    pub penalty: f64,
+    /// Create a receptive field when the largest activation is ≤ `w_gen`. Default 0.1.
+    pub w_gen: f64,
+    /// Prune when the second-largest activation is > `w_prune`. Default 1.0 (never).
+    pub w_prune: f64,
+    /// Initial forgetting factor of a PLS direction. Default 0.999.
+    pub init_lambda: f64,
+    /// Final forgetting factor. Default 0.99999.
+    pub final_lambda: f64,
+    /// Annealing rate: `λ ← τλ·λ + final·(1 − τλ)` per update. Default 0.9999.
+    pub tau_lambda: f64,
+    /// Initial `SSs2` of a PLS direction. Default 1e-10.
+    pub init_s2: f64,
+    /// PLS growth when `mse_R < add_threshold · mse_{R−1}`. Default 0.5.
+    pub add_threshold: f64,
+    /// Kernel. Default Gaussian.
+    pub kernel: Kernel,
+    /// Inputs are divided by these (input units). Default 1.
+    pub norm_in: Norm,
+    /// Outputs are divided by these (output units). Default 1.
+    pub norm_out: Norm,
+    /// Receptive fields with activation `w ≤ cutoff` are skipped when predicting. Default 0.001.
+    pub cutoff: f64,
+    /// One set of receptive fields shared by all outputs (each RF regresses every output);
+    /// false gives the reference library's independent model per output. Default false.
+    pub shared_rfs: bool,
+    /// Input dimensions (0-based) the kernel and its metric live on; `None` = all inputs.
+    /// Paper eq. 33: e.g. `(q, q̇)`. Default `None`.
+    pub kernel_dims: Option<Vec<usize>>,
+    /// Input dimensions (0-based) of the local linear regression; `None` = all inputs.
+    /// Paper eq. 32: e.g. `(q̇, u)`. Default `None`.
+    pub regression_dims: Option<Vec<usize>>,
+}
+
+impl Default for LwprConfig {
+    fn default() -> Self {
+        LwprConfig {
+            init_d: MetricInit::Scalar(25.0),
+            init_alpha: 50.0,
+            diag_only: true,
+            update_d: true,
+            meta: false,
+            meta_rate: 250.0,
+            penalty: 1e-6,
+            w_gen: 0.1,
+            w_prune: 1.0,
+            init_lambda: 0.999,
+            final_lambda: 0.99999,
+            tau_lambda: 0.9999,
+            init_s2: 1e-10,
+            add_threshold: 0.5,
+            kernel: Kernel::Gaussian,
+            norm_in: Norm::default(),
+            norm_out: Norm::default(),
+            cutoff: 0.001,
+            shared_rfs: false,
+            kernel_dims: None,
+            regression_dims: None,
+        }
+    }
+}
+
+impl LwprConfig {
+    /// Replaces `"std"` normalisations by the given per-dimension standard deviations
+    /// (values ≤ 1e-12 become 1, so constant columns are left unscaled).
+    pub fn resolve_std(&mut self, std_in: &[f64], std_out: &[f64]) {
+        let fix = |s: &[f64]| s.iter().map(|&v| if v > 1e-12 { v } else { 1.0 }).collect();
+        if self.norm_in == Norm::Keyword(NormKeyword::Std) {
+            self.norm_in = Norm::List(fix(std_in));
+        }
+        if self.norm_out == Norm::Keyword(NormKeyword::Std) {
+            self.norm_out = Norm::List(fix(std_out));
+        }
+    }
+
+    /// Checks every value against the model's dimensions and resolves the config.
+    /// Fails with [`crate::LwprError::Config`] naming the first bad parameter.
+    pub fn validate(
+        &self,
+        n_in: usize,
+        n_out: usize,
+    ) -> Result<crate::params::Params, crate::LwprError> {
+        crate::params::Params::from_config(self, n_in, n_out)
+    }
+}

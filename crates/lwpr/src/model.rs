@@ -1,0 +1,283 @@
+//! The model and one update (`shared/LWPR.md`, "One update").
+
+use crate::config::LwprConfig;
+use crate::error::check_vec;
+use crate::metric::{self, MetricAcc};
+use crate::params::{Params, W_UPDATE};
+use crate::partition::{RfEvent, RfId};
+use crate::pls;
+use crate::rf::SubModel;
+use crate::scratch::{quad, Scratch};
+use crate::LwprError;
+use serde::{Deserialize, Serialize};
+
+/// An incremental LWPR model mapping `n_in` inputs to `n_out` outputs.
+///
+/// Update with [`Lwpr::update`], predict with [`Lwpr::predict`] (and the `_conf`/`_jacobian`
+/// variants); both reuse buffers held by the model and do not allocate except when the
+/// partition changes (an RF is added, or a PLS model grows beyond its reserved directions).
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct Lwpr {
+    pub(crate) p: Params,
+    pub(crate) subs: Vec<SubModel>,
+    pub(crate) next_id: u64,
+    pub(crate) n_updates: u64,
+    #[serde(skip)]
+    pub(crate) ws: Scratch,
+    #[serde(skip)]
+    pub(crate) events: Vec<RfEvent>,
+}
+
+/// What one update did.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct UpdateInfo {
+    /// Largest activation of an existing RF at the input (over all sub-models), before any RF
+    /// was added.
+    pub max_w: f64,
+    /// RFs added by this update (at most one per sub-model).
+    pub added: usize,
+    /// RFs pruned by this update (at most one per sub-model).
+    pub pruned: usize,
+}
+
+impl Lwpr {
+    /// A model with no receptive fields. Validates `config` (once) for these dimensions.
+    pub fn new(n_in: usize, n_out: usize, config: &LwprConfig) -> Result<Lwpr, LwprError> {
+        let p = config.validate(n_in, n_out)?;
+        let ws = Scratch::new(&p, 0);
+        Ok(Lwpr {
+            subs: (0..p.n_sub()).map(|_| SubModel::new()).collect(),
+            p,
+            next_id: 0,
+            n_updates: 0,
+            ws,
+            events: Vec::with_capacity(64),
+        })
+    }
+
+    /// The validated parameters.
+    pub fn params(&self) -> &Params {
+        &self.p
+    }
+
+    /// Number of inputs.
+    pub fn n_in(&self) -> usize {
+        self.p.n_in
+    }
+
+    /// Number of outputs.
+    pub fn n_out(&self) -> usize {
+        self.p.n_out
+    }
+
+    /// Number of sub-models (1 with shared RFs, else `n_out`).
+    pub fn n_sub(&self) -> usize {
+        self.subs.len()
+    }
+
+    /// Number of RFs per sub-model.
+    pub fn n_rfs(&self) -> Vec<usize> {
+        self.subs.iter().map(|s| s.rfs.len()).collect()
+    }
+
+    /// Total number of RFs.
+    pub fn n_rfs_total(&self) -> usize {
+        self.subs.iter().map(|s| s.rfs.len()).sum()
+    }
+
+    /// Number of updates so far.
+    pub fn n_updates(&self) -> u64 {
+        self.n_updates
+    }
+
+    /// The prediction the last update made before learning from its sample (user units;
+    /// NaN for an output where no trustworthy RF was updated).
+    pub fn last_update_prediction(&self) -> &[f64] {
+        &self.ws.last_yp
+    }
+
+    /// Learns from one sample `(x, y)`. Fails without changing anything when a length is wrong
+    /// or a value is not finite. RF additions and removals are queued as [`RfEvent`]s.
+    pub fn update(&mut self, x: &[f64], y: &[f64]) -> Result<UpdateInfo, LwprError> {
+        check_vec("x", x, self.p.n_in)?;
+        check_vec("y", y, self.p.n_out)?;
+        let Lwpr {
+            p,
+            subs,
+            next_id,
+            ws,
+            events,
+            ..
+        } = self;
+        ws.load_x(p, x);
+        for o in 0..p.n_out {
+            ws.yn[o] = y[o] / p.norm_out[o];
+        }
+        let mut info = UpdateInfo {
+            max_w: 0.0,
+            added: 0,
+            pruned: 0,
+        };
+        let ny = p.n_local_out();
+        for (s, sub) in subs.iter_mut().enumerate() {
+            let o0 = s * ny;
+            let r = update_sub(p, sub, s, o0, ws, events, next_id);
+            info.max_w = info.max_w.max(r.0);
+            info.added += r.1 as usize;
+            info.pruned += r.2 as usize;
+        }
+        for o in 0..p.n_out {
+            ws.last_yp[o] *= p.norm_out[o];
+        }
+        self.n_updates += 1;
+        Ok(info)
+    }
+
+    /// Removes and returns the queued RF events (oldest first). The queue grows until drained.
+    pub fn drain_events(&mut self) -> std::vec::Drain<'_, RfEvent> {
+        self.events.drain(..)
+    }
+
+    /// The queued RF events, without removing them.
+    pub fn events(&self) -> &[RfEvent] {
+        &self.events
+    }
+}
+
+/// Updates sub-model `s` (outputs `o0..o0+ny` of `ws.yn`). Returns (max w, added, pruned).
+fn update_sub(
+    p: &Params,
+    sub: &mut SubModel,
+    s: usize,
+    o0: usize,
+    ws: &mut Scratch,
+    events: &mut Vec<RfEvent>,
+    next_id: &mut u64,
+) -> (f64, bool, bool) {
+    let (nk, nr, ml, ny) = (p.nk(), p.nr(), p.mlen(), p.n_local_out());
+    let diag = p.cfg.diag_only;
+    let qb = p.q_bound(W_UPDATE);
+    let (mut q1, mut i1, mut q2, mut i2) = (f64::INFINITY, usize::MAX, f64::INFINITY, usize::MAX);
+    ws.active.clear();
+    let kern = if diag { &sub.ds } else { &sub.ms };
+    for i in 0..sub.rfs.len() {
+        let q = quad(
+            diag,
+            &sub.centers[i * nk..(i + 1) * nk],
+            &kern[i * ml..(i + 1) * ml],
+            &ws.xk,
+            &mut ws.met.dx,
+        );
+        if q < q2 {
+            if q < q1 {
+                (q2, i2, q1, i1) = (q1, i1, q, i);
+            } else {
+                (q2, i2) = (q, i);
+            }
+        }
+        if q < qb {
+            let (w, dw, ddw) = p.kernel(q);
+            if w > W_UPDATE {
+                ws.active.push((i, w, dw, ddw));
+            }
+        }
+    }
+    let y = &ws.yn[o0..o0 + ny];
+    ws.yacc[..ny].iter_mut().for_each(|v| *v = 0.0);
+    let mut sum_w = 0.0;
+    for &(i, w, dwdq, ddwdqdq) in ws.active.iter() {
+        let rf = &mut sub.rfs[i];
+        let omega = rf.outs[0].sum_w[0] * rf.outs[0].lambda[0];
+        pls::update_input_means(rf, omega, &ws.xr, w, &mut ws.pls.xmz);
+        if rf.outs[0].n_data[0] > 2.0 * nr as f64 {
+            rf.trustworthy = true;
+        }
+        let mut acc = MetricAcc::default();
+        for (o, out) in rf.outs.iter_mut().enumerate() {
+            let r = pls::update_regression(out, nr, omega, y[o], w, &mut ws.pls);
+            if rf.trustworthy {
+                ws.yacc[o] += w * r.yp;
+            }
+            if p.cfg.update_d {
+                metric::output_terms(out, nr, w, &ws.pls.s, r.e_cv, r.e, p.cfg.meta, &mut acc);
+            }
+            out.check_grow(p);
+            pls::forget(out, p.cfg.tau_lambda, p.cfg.final_lambda);
+            pls::update_slope(out, nr);
+        }
+        if rf.trustworthy {
+            sum_w += w;
+        }
+        if acc.n > 0 {
+            let c = &sub.centers[i * nk..(i + 1) * nk];
+            for k in 0..nk {
+                ws.met.dx[k] = ws.xk[k] - c[k];
+            }
+            let (m, d) = (
+                &mut sub.ms[i * ml..(i + 1) * ml],
+                &mut sub.ds[i * ml..(i + 1) * ml],
+            );
+            metric::derivatives(
+                diag,
+                p.cfg.meta,
+                m,
+                d,
+                dwdq,
+                ddwdqdq,
+                p.penalty_n,
+                &mut ws.met,
+            );
+            metric::step(
+                p,
+                m,
+                d,
+                &mut rf.alpha,
+                &mut rf.b,
+                &mut rf.hm,
+                acc,
+                &mut ws.met,
+            );
+        }
+    }
+    for o in 0..ny {
+        ws.last_yp[o0 + o] = if sum_w > 0.0 {
+            ws.yacc[o] / sum_w
+        } else {
+            f64::NAN
+        };
+    }
+    // Add or prune (step 5).
+    let w_max = if i1 < usize::MAX { p.kernel(q1).0 } else { 0.0 };
+    if w_max <= p.cfg.w_gen {
+        let template =
+            (i1 < usize::MAX && w_max > 0.1 * p.cfg.w_gen && sub.rfs[i1].trustworthy).then_some(i1);
+        let id = *next_id;
+        *next_id += 1;
+        let y = &ws.yn[o0..o0 + ny];
+        sub.add(p, id, &ws.xk, y, template);
+        events.push(RfEvent::Added {
+            sub: s,
+            id: RfId(id),
+            copied_from: template.map(|t| RfId(sub.rfs[t].id)),
+        });
+        if ws.active.capacity() < sub.rfs.len() {
+            ws.active.reserve(sub.rfs.len());
+        }
+        return (w_max, true, false);
+    }
+    if i2 < usize::MAX && p.kernel(q2).0 > p.cfg.w_prune {
+        // Remove the narrower of the two (larger trace of D).
+        let k = if sub.trace_d(p, i1) > sub.trace_d(p, i2) {
+            i1
+        } else {
+            i2
+        };
+        events.push(RfEvent::Pruned {
+            sub: s,
+            id: RfId(sub.rfs[k].id),
+        });
+        sub.remove(p, k);
+        return (w_max, false, true);
+    }
+    (w_max, false, false)
+}

@@ -1,0 +1,239 @@
+//! Validated, resolved parameters: what the algorithm reads on every update.
+
+use crate::config::{Kernel, LwprConfig, MetricInit, Norm};
+use crate::LwprError;
+use serde::{Deserialize, Serialize};
+
+/// Threshold on `w` for updating a receptive field (reference constant).
+pub(crate) const W_UPDATE: f64 = 0.001;
+
+/// A config after [`LwprConfig::validate`]: dimensions fixed, `init_D` factored.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Params {
+    /// Number of inputs.
+    pub n_in: usize,
+    /// Number of outputs.
+    pub n_out: usize,
+    /// Kernel dimensions (indices into the input).
+    pub kdims: Vec<usize>,
+    /// Regression dimensions (indices into the input).
+    pub rdims: Vec<usize>,
+    /// Input divisors.
+    pub norm_in: Vec<f64>,
+    /// Output divisors.
+    pub norm_out: Vec<f64>,
+    /// `M` of a new RF: `nk` entries (diagonal) or `nk²` row-major upper-triangular.
+    pub init_m: Vec<f64>,
+    /// `D` of a new RF, same layout as `init_m` (`nk²` symmetric when full).
+    pub init_d: Vec<f64>,
+    /// The config as given (after `"std"` resolution).
+    pub cfg: LwprConfig,
+    /// `γ / nk`.
+    pub penalty_n: f64,
+}
+
+fn bad(msg: impl Into<String>) -> LwprError {
+    LwprError::Config(msg.into())
+}
+
+fn dims(name: &str, d: &Option<Vec<usize>>, n_in: usize) -> Result<Vec<usize>, LwprError> {
+    let v: Vec<usize> = d.clone().unwrap_or_else(|| (0..n_in).collect());
+    if v.is_empty() {
+        return Err(bad(format!("{name} is empty")));
+    }
+    for (i, &a) in v.iter().enumerate() {
+        if a >= n_in {
+            return Err(bad(format!(
+                "{name} has index {a} but there are {n_in} inputs"
+            )));
+        }
+        if v[..i].contains(&a) {
+            return Err(bad(format!("{name} repeats index {a}")));
+        }
+    }
+    Ok(v)
+}
+
+fn norm(name: &str, n: &Norm, len: usize) -> Result<Vec<f64>, LwprError> {
+    let v = match n {
+        Norm::Scalar(s) => vec![*s; len],
+        Norm::List(l) if l.len() == len => l.clone(),
+        Norm::List(l) => return Err(bad(format!("{name} has {} entries, need {len}", l.len()))),
+        Norm::Keyword(_) => return Err(bad(format!("{name} = \"std\" was not resolved"))),
+    };
+    if v.iter().any(|&a| !(a.is_finite() && a > 0.0)) {
+        return Err(bad(format!("{name} entries must be finite and > 0")));
+    }
+    Ok(v)
+}
+
+fn range(name: &str, v: f64, lo: f64, hi: f64, lo_open: bool) -> Result<(), LwprError> {
+    let ok = v.is_finite() && (if lo_open { v > lo } else { v >= lo }) && v <= hi;
+    if ok {
+        Ok(())
+    } else {
+        let l = if lo_open { "(" } else { "[" };
+        Err(bad(format!("{name} = {v} is outside {l}{lo}, {hi}]")))
+    }
+}
+
+/// Full symmetric `D` (row-major `nk²`) from the init spec.
+fn init_d_full(init: &MetricInit, nk: usize) -> Result<Vec<f64>, LwprError> {
+    let mut d = vec![0.0; nk * nk];
+    match init {
+        MetricInit::Scalar(r) => (0..nk).for_each(|i| d[i * nk + i] = *r),
+        MetricInit::Diagonal(v) if v.len() == nk => (0..nk).for_each(|i| d[i * nk + i] = v[i]),
+        MetricInit::Diagonal(v) => {
+            return Err(bad(format!("init_d has {} entries, need {nk}", v.len())))
+        }
+        MetricInit::Full(rows) => {
+            if rows.len() != nk || rows.iter().any(|r| r.len() != nk) {
+                return Err(bad(format!("init_d must be {nk}×{nk}")));
+            }
+            for i in 0..nk {
+                for j in 0..nk {
+                    d[i * nk + j] = rows[i][j];
+                }
+            }
+        }
+    }
+    if d.iter().any(|a| !a.is_finite()) {
+        return Err(bad("init_d has non-finite entries"));
+    }
+    for i in 0..nk {
+        for j in 0..i {
+            if (d[i * nk + j] - d[j * nk + i]).abs() > 1e-12 * (1.0 + d[i * nk + j].abs()) {
+                return Err(bad("init_d is not symmetric"));
+            }
+        }
+    }
+    Ok(d)
+}
+
+impl Params {
+    /// Validates `cfg` for a model with `n_in` inputs and `n_out` outputs.
+    pub fn from_config(cfg: &LwprConfig, n_in: usize, n_out: usize) -> Result<Params, LwprError> {
+        if n_in == 0 || n_out == 0 {
+            return Err(bad("a model needs at least one input and one output"));
+        }
+        let kdims = dims("kernel_dims", &cfg.kernel_dims, n_in)?;
+        let rdims = dims("regression_dims", &cfg.regression_dims, n_in)?;
+        let nk = kdims.len();
+        range("init_alpha", cfg.init_alpha, 0.0, f64::MAX, true)?;
+        range("meta_rate", cfg.meta_rate, 0.0, f64::MAX, true)?;
+        range("penalty", cfg.penalty, 0.0, f64::MAX, false)?;
+        range("w_gen", cfg.w_gen, 0.0, 1.0, true)?;
+        range("w_prune", cfg.w_prune, 0.0, 1.0, true)?;
+        range("init_lambda", cfg.init_lambda, 0.0, 1.0, true)?;
+        range("final_lambda", cfg.final_lambda, 0.0, 1.0, true)?;
+        range("tau_lambda", cfg.tau_lambda, 0.0, 1.0, false)?;
+        range("init_s2", cfg.init_s2, 0.0, f64::MAX, true)?;
+        range("add_threshold", cfg.add_threshold, 0.0, f64::MAX, true)?;
+        range("cutoff", cfg.cutoff, 0.0, 1.0, false)?;
+        if cfg.cutoff >= 1.0 {
+            return Err(bad("cutoff must be < 1"));
+        }
+        let norm_in = norm("norm_in", &cfg.norm_in, n_in)?;
+        let norm_out = norm("norm_out", &cfg.norm_out, n_out)?;
+        let d = init_d_full(&cfg.init_d, nk)?;
+        let chol = nalgebra::DMatrix::from_row_slice(nk, nk, &d)
+            .cholesky()
+            .ok_or_else(|| bad("init_d is not positive definite"))?;
+        // D = L Lᵀ = MᵀM with M = Lᵀ upper-triangular.
+        let l = chol.l();
+        let (init_m, init_d) = if cfg.diag_only {
+            if (0..nk).any(|i| (0..nk).any(|j| i != j && d[i * nk + j] != 0.0)) {
+                return Err(bad("init_d has off-diagonal entries but diag_only = true"));
+            }
+            let dd: Vec<f64> = (0..nk).map(|i| d[i * nk + i]).collect();
+            (dd.iter().map(|a| a.sqrt()).collect(), dd)
+        } else {
+            let mut m = vec![0.0; nk * nk];
+            for r in 0..nk {
+                for c in r..nk {
+                    m[r * nk + c] = l[(c, r)];
+                }
+            }
+            (m, d)
+        };
+        Ok(Params {
+            n_in,
+            n_out,
+            kdims,
+            rdims,
+            norm_in,
+            norm_out,
+            init_m,
+            init_d,
+            cfg: cfg.clone(),
+            penalty_n: cfg.penalty / nk as f64,
+        })
+    }
+
+    /// Number of kernel dimensions.
+    pub fn nk(&self) -> usize {
+        self.kdims.len()
+    }
+
+    /// Number of regression dimensions.
+    pub fn nr(&self) -> usize {
+        self.rdims.len()
+    }
+
+    /// Number of sub-models: 1 with shared RFs, else one per output.
+    pub fn n_sub(&self) -> usize {
+        if self.cfg.shared_rfs {
+            1
+        } else {
+            self.n_out
+        }
+    }
+
+    /// Outputs regressed by each RF of a sub-model.
+    pub fn n_local_out(&self) -> usize {
+        if self.cfg.shared_rfs {
+            self.n_out
+        } else {
+            1
+        }
+    }
+
+    /// Length of the metric storage per RF (`nk` diagonal, `nk²` full).
+    pub fn mlen(&self) -> usize {
+        if self.cfg.diag_only {
+            self.nk()
+        } else {
+            self.nk() * self.nk()
+        }
+    }
+
+    /// Kernel value and its first two derivatives with respect to `q`.
+    #[inline]
+    pub fn kernel(&self, q: f64) -> (f64, f64, f64) {
+        match self.cfg.kernel {
+            Kernel::Gaussian => {
+                let w = (-0.5 * q).exp();
+                (w, -0.5 * w, 0.25 * w)
+            }
+            Kernel::Bisquare => {
+                let a = 1.0 - 0.25 * q;
+                if a < 0.0 {
+                    (0.0, 0.0, 0.0)
+                } else {
+                    (a * a, -0.5 * a, 0.125)
+                }
+            }
+        }
+    }
+
+    /// A `q` above which the activation is certainly ≤ `w` (used to skip far RFs cheaply;
+    /// the exact test on `w` is still made below it).
+    pub fn q_bound(&self, w: f64) -> f64 {
+        let q = match self.cfg.kernel {
+            Kernel::Gaussian if w > 0.0 => -2.0 * w.ln(),
+            Kernel::Bisquare => 4.0 * (1.0 - w.sqrt()),
+            _ => f64::INFINITY,
+        };
+        q * (1.0 + 1e-9) + 1e-12
+    }
+}

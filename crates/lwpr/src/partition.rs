@@ -1,0 +1,194 @@
+//! Read access to the partition of input space: RF ids, activations, centres, metrics and
+//! local linear models, and the events that tell other learners when RFs come and go.
+//!
+//! Everything returned here is in user units (inputs and outputs before normalisation).
+
+use crate::error::check_vec;
+use crate::model::Lwpr;
+use crate::rf::{Rf, SubModel};
+use crate::scratch::quad;
+use crate::LwprError;
+use nalgebra::DMatrix;
+use serde::{Deserialize, Serialize};
+
+/// A receptive field's stable id: unique within a model, never reused, kept by save/load.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+pub struct RfId(pub u64);
+
+/// A change of the partition, queued by [`Lwpr::update`]; read with [`Lwpr::drain_events`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum RfEvent {
+    /// A new RF in sub-model `sub`, possibly copying the metric of RF `copied_from`.
+    Added {
+        /// Sub-model (the output in per-output mode, 0 with shared RFs).
+        sub: usize,
+        /// The new RF.
+        id: RfId,
+        /// The RF whose metric and `β₀` it started from, if any.
+        copied_from: Option<RfId>,
+    },
+    /// An RF was removed from sub-model `sub`.
+    Pruned {
+        /// Sub-model.
+        sub: usize,
+        /// The removed RF.
+        id: RfId,
+    },
+}
+
+/// One RF's activation at an input.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Activation {
+    /// The RF.
+    pub id: RfId,
+    /// `w ∈ (0, 1]`.
+    pub w: f64,
+}
+
+/// The local linear model of one output in one RF:
+/// `ŷ(x) = offset + slope · (x_R − mean)` over the regression dimensions `x_R`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LocalModel {
+    /// `β₀`: the RF's weighted mean output.
+    pub offset: f64,
+    /// The RF's weighted mean of the regression inputs.
+    pub mean: Vec<f64>,
+    /// `∂ŷ/∂x_R` (the PLS regression, over its predicting directions).
+    pub slope: Vec<f64>,
+}
+
+/// A read-only view of one RF.
+pub struct RfView<'a> {
+    model: &'a Lwpr,
+    sub: &'a SubModel,
+    s: usize,
+    i: usize,
+    rf: &'a Rf,
+}
+
+impl RfView<'_> {
+    /// Stable id.
+    pub fn id(&self) -> RfId {
+        RfId(self.rf.id)
+    }
+
+    /// Whether the RF has seen enough data to predict (`n_data > 2·n_reg_dims`).
+    pub fn trustworthy(&self) -> bool {
+        self.rf.trustworthy
+    }
+
+    /// Effective number of samples seen (first PLS direction, forgetting applied).
+    pub fn n_data(&self) -> f64 {
+        self.rf.outs[0].n_data[0]
+    }
+
+    /// Number of PLS directions of each output this RF regresses.
+    pub fn n_reg(&self) -> Vec<usize> {
+        self.rf.outs.iter().map(|o| o.n_reg).collect()
+    }
+
+    /// Centre over the kernel dimensions.
+    pub fn center(&self) -> Vec<f64> {
+        let p = &self.model.p;
+        let nk = p.nk();
+        let c = &self.sub.centers[self.i * nk..(self.i + 1) * nk];
+        c.iter()
+            .zip(&p.kdims)
+            .map(|(v, &d)| v * p.norm_in[d])
+            .collect()
+    }
+
+    /// Distance metric `D` over the kernel dimensions: `w = K((x − c)ᵀ D (x − c))`.
+    pub fn metric(&self) -> DMatrix<f64> {
+        let p = &self.model.p;
+        let (nk, ml) = (p.nk(), p.mlen());
+        let d = &self.sub.ds[self.i * ml..(self.i + 1) * ml];
+        DMatrix::from_fn(nk, nk, |r, c| {
+            let v = if p.cfg.diag_only {
+                if r == c {
+                    d[r]
+                } else {
+                    0.0
+                }
+            } else {
+                d[r * nk + c]
+            };
+            v / (p.norm_in[p.kdims[r]] * p.norm_in[p.kdims[c]])
+        })
+    }
+
+    /// The local linear model of local output `o` (0 in per-output mode; the output index
+    /// with shared RFs).
+    pub fn local_model(&self, o: usize) -> Option<LocalModel> {
+        let p = &self.model.p;
+        let pls = self.rf.outs.get(o)?;
+        let no = p.norm_out[if p.cfg.shared_rfs { o } else { self.s }];
+        Some(LocalModel {
+            offset: pls.beta0 * no,
+            mean: (self.rf.mean_x.iter().zip(&p.rdims))
+                .map(|(m, &d)| m * p.norm_in[d])
+                .collect(),
+            slope: (pls.slope.iter().zip(&p.rdims))
+                .map(|(s, &d)| s * no / p.norm_in[d])
+                .collect(),
+        })
+    }
+}
+
+impl Lwpr {
+    fn sub(&self, sub: usize) -> Result<&SubModel, LwprError> {
+        self.subs.get(sub).ok_or(LwprError::NoSubModel {
+            index: sub,
+            count: self.subs.len(),
+        })
+    }
+
+    /// Views of all RFs of sub-model `sub` (in storage order, which pruning may change).
+    pub fn rfs(&self, sub: usize) -> Result<impl Iterator<Item = RfView<'_>>, LwprError> {
+        let s = self.sub(sub)?;
+        Ok(s.rfs.iter().enumerate().map(move |(i, rf)| RfView {
+            model: self,
+            sub: s,
+            s: sub,
+            i,
+            rf,
+        }))
+    }
+
+    /// The RF with this id in sub-model `sub`, if it exists.
+    pub fn rf(&self, sub: usize, id: RfId) -> Option<RfView<'_>> {
+        self.rfs(sub).ok()?.find(|v| v.id() == id)
+    }
+
+    /// Writes into `out` (cleared first) the activations `w > cutoff` of every RF of
+    /// sub-model `sub` at input `x`, trustworthy or not. Does not allocate once `out` has
+    /// capacity for the result.
+    pub fn activations(
+        &mut self,
+        sub: usize,
+        x: &[f64],
+        cutoff: f64,
+        out: &mut Vec<Activation>,
+    ) -> Result<(), LwprError> {
+        check_vec("x", x, self.p.n_in)?;
+        self.sub(sub)?;
+        let Lwpr { p, subs, ws, .. } = self;
+        ws.load_x(p, x);
+        let s = &subs[sub];
+        let (nk, ml, diag) = (p.nk(), p.mlen(), p.cfg.diag_only);
+        let kern = if diag { &s.ds } else { &s.ms };
+        let qb = p.q_bound(cutoff);
+        out.clear();
+        for (i, rf) in s.rfs.iter().enumerate() {
+            let c = &s.centers[i * nk..(i + 1) * nk];
+            let q = quad(diag, c, &kern[i * ml..(i + 1) * ml], &ws.xk, &mut ws.met.dx);
+            if q < qb {
+                let w = p.kernel(q).0;
+                if w > cutoff {
+                    out.push(Activation { id: RfId(rf.id), w });
+                }
+            }
+        }
+        Ok(())
+    }
+}

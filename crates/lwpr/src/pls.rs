@@ -1,0 +1,194 @@
+//! Incremental partial least squares inside one receptive field: steps (a) and (b) of an update
+//! (`shared/LWPR.md`), projections for prediction, and the local slope.
+
+use crate::rf::{Pls, Rf};
+
+/// Scratch for the PLS step, sized once for `nr` regression dimensions.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct PlsScratch {
+    /// Input minus the RF's weighted mean.
+    pub xmz: Vec<f64>,
+    /// Residual inputs `xres_j`, `nr × nr`.
+    pub xres: Vec<f64>,
+    /// Projections `s_j` (after an update: with the new `u`, `p`).
+    pub s: Vec<f64>,
+    /// Leave-one-out residuals `e_cv,j`.
+    pub e_cv: Vec<f64>,
+    /// Working residual for projections.
+    pub xu: Vec<f64>,
+}
+
+impl PlsScratch {
+    /// Buffers for `nr` regression dimensions.
+    pub fn new(nr: usize) -> PlsScratch {
+        PlsScratch {
+            xmz: vec![0.0; nr],
+            xres: vec![0.0; nr * nr],
+            s: vec![0.0; nr],
+            e_cv: vec![0.0; nr],
+            xu: vec![0.0; nr],
+        }
+    }
+}
+
+#[inline]
+pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+/// Step (a) for the inputs: with `ω = sum_w[0]·λ[0]` (passed in, shared by all outputs),
+/// updates the RF's weighted mean and variance and writes `x̃ = x − mean_x` into `xmz`.
+pub(crate) fn update_input_means(rf: &mut Rf, omega: f64, x: &[f64], w: f64, xmz: &mut [f64]) {
+    let inv = 1.0 / (omega + w);
+    for i in 0..x.len() {
+        let m = (omega * rf.mean_x[i] + w * x[i]) * inv;
+        rf.mean_x[i] = m;
+        let d = x[i] - m;
+        xmz[i] = d;
+        rf.var_x[i] = (omega * rf.var_x[i] + w * d * d) * inv;
+    }
+}
+
+/// Projections `s_j` of `x` on the first `np` directions (eq. of the PLS recursion
+/// `xres_{j+1} = xres_j − p_j s_j`).
+#[inline]
+pub(crate) fn project(pls: &Pls, nr: usize, np: usize, x: &[f64], xu: &mut [f64], s: &mut [f64]) {
+    xu.copy_from_slice(x);
+    for j in 0..np {
+        let sj = dot(&pls.u[j * nr..(j + 1) * nr], xu);
+        s[j] = sj;
+        if j + 1 < np {
+            for (a, &pv) in xu.iter_mut().zip(&pls.p[j * nr..(j + 1) * nr]) {
+                *a -= pv * sj;
+            }
+        }
+    }
+}
+
+/// Outcome of [`update_regression`] for one output.
+pub(crate) struct RegOut {
+    /// The RF's prediction `β₀ + Σ β_j s_j` (normalised), before this update's forgetting step.
+    pub yp: f64,
+    /// Leave-one-out residual of the last trusted direction.
+    pub e_cv: f64,
+    /// Residual of the updated model.
+    pub e: f64,
+}
+
+/// Steps (a, output part) and (b): updates `β₀` with `(ω, inv)` from the input means, then one
+/// weighted PLS update with sample `(x̃, y)` and weight `w`. `ws.s` holds the new projections.
+pub(crate) fn update_regression(
+    pls: &mut Pls,
+    nr: usize,
+    omega: f64,
+    y: f64,
+    w: f64,
+    ws: &mut PlsScratch,
+) -> RegOut {
+    pls.beta0 = (omega * pls.beta0 + w * y) / (omega + w);
+    let ymz = y - pls.beta0;
+    let r = pls.n_reg;
+    let PlsScratch {
+        xmz,
+        xres,
+        s,
+        e_cv,
+        xu,
+    } = ws;
+    // Projection with the old directions, keeping every residual.
+    xres[..nr].copy_from_slice(xmz);
+    for j in 0..r {
+        let (done, rest) = xres.split_at_mut((j + 1) * nr);
+        let xj = &done[j * nr..];
+        let sj = dot(&pls.u[j * nr..(j + 1) * nr], xj);
+        s[j] = sj;
+        if j + 1 < r {
+            let pj = &pls.p[j * nr..(j + 1) * nr];
+            for i in 0..nr {
+                rest[i] = xj[i] - pj[i] * sj;
+            }
+        }
+    }
+    let mut yres = 0.0;
+    for j in 0..r {
+        yres += pls.beta[j] * s[j];
+        pls.sum_w[j] = pls.sum_w[j] * pls.lambda[j] + w;
+        e_cv[j] = ymz - yres;
+    }
+    let mut ws2 = 0.0;
+    for j in 0..r {
+        let lam = pls.lambda[j];
+        let lam_slow = 0.9 + 0.1 * lam;
+        let t = if j == 0 { ymz } else { e_cv[j - 1] };
+        let wt = w * t;
+        let wsj = w * s[j];
+        let xj = &xres[j * nr..(j + 1) * nr];
+        let sxy = &mut pls.sxy[j * nr..(j + 1) * nr];
+        let mut norm2 = 0.0;
+        for i in 0..nr {
+            let v = sxy[i] * lam_slow + wt * xj[i];
+            sxy[i] = v;
+            norm2 += v * v;
+        }
+        if norm2 > 1e-24 {
+            let inv = 1.0 / norm2.sqrt();
+            for (u, &v) in pls.u[j * nr..(j + 1) * nr].iter_mut().zip(sxy.iter()) {
+                *u = v * inv;
+            }
+        }
+        pls.ss_s2[j] = lam * pls.ss_s2[j] + s[j] * wsj;
+        pls.ss_yres[j] = lam * pls.ss_yres[j] + t * wsj;
+        let inv_s2 = 1.0 / pls.ss_s2[j];
+        pls.beta[j] = pls.ss_yres[j] * inv_s2;
+        let ssx = &mut pls.ssx[j * nr..(j + 1) * nr];
+        let pj = &mut pls.p[j * nr..(j + 1) * nr];
+        for i in 0..nr {
+            let v = lam * ssx[i] + wsj * xj[i];
+            ssx[i] = v;
+            pj[i] = v * inv_s2;
+        }
+        ws2 += wsj * wsj * inv_s2;
+    }
+    pls.ssp = pls.lambda[r - 1] * pls.ssp + ws2;
+    // New projections.
+    project(pls, nr, r, xmz, xu, s);
+    let np = pls.n_pred(nr);
+    let ypred: f64 = (0..np).map(|j| pls.beta[j] * s[j]).sum();
+    let e_cv_r = if np == 0 { ymz } else { e_cv[np - 1] };
+    let e = ymz - ypred;
+    if pls.n_data[0] * (1.0 - pls.lambda[0]) > 0.1 {
+        pls.sum_e2 = pls.sum_e2 * pls.lambda[r - 1] + w * e * e;
+        for j in 0..r {
+            pls.sum_e_cv2[j] = pls.sum_e_cv2[j] * pls.lambda[j] + w * e_cv[j] * e_cv[j];
+        }
+    }
+    RegOut {
+        yp: ypred + pls.beta0,
+        e_cv: e_cv_r,
+        e,
+    }
+}
+
+/// Step (f): `n_data_j ← λ_j n_data_j + 1`, then the forgetting schedule.
+pub(crate) fn forget(pls: &mut Pls, tau: f64, final_lambda: f64) {
+    for j in 0..pls.n_reg {
+        pls.n_data[j] = pls.n_data[j] * pls.lambda[j] + 1.0;
+        pls.lambda[j] = tau * pls.lambda[j] + final_lambda * (1.0 - tau);
+    }
+}
+
+/// Recomputes `pls.slope = ∂(Σ_j β_j s_j)/∂x̃` over the predicting directions, by the adjoint
+/// recursion `a_j = β_j u_j + a_{j+1} − u_j (p_j · a_{j+1})`.
+pub(crate) fn update_slope(pls: &mut Pls, nr: usize) {
+    let np = pls.n_pred(nr);
+    let a = &mut pls.slope;
+    a.iter_mut().for_each(|v| *v = 0.0);
+    for j in (0..np).rev() {
+        let u = &pls.u[j * nr..(j + 1) * nr];
+        let pa = dot(&pls.p[j * nr..(j + 1) * nr], a);
+        let c = pls.beta[j] - pa;
+        for i in 0..nr {
+            a[i] += c * u[i];
+        }
+    }
+}

@@ -1,0 +1,187 @@
+//! Prediction `ŷ = Σ w ŷ_k / Σ w` over trustworthy RFs with `w > cutoff`, with optional
+//! confidence bounds and Jacobian `∂ŷ/∂x`.
+
+use crate::error::{check_len, check_vec};
+use crate::model::Lwpr;
+use crate::pls::{dot, project};
+use crate::scratch::quad;
+use crate::LwprError;
+
+/// How much support a prediction had.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Support {
+    /// The smallest, over sub-models, total activation `Σ w` of the RFs that predicted.
+    pub sum_w: f64,
+}
+
+#[derive(Clone, Copy, PartialEq)]
+enum Want {
+    Plain,
+    Conf,
+    Jac,
+}
+
+impl Lwpr {
+    /// Predicts `y` (length `n_out`) at `x` (length `n_in`).
+    ///
+    /// Fails with [`LwprError::NoActiveRf`] when, for some output, no trustworthy RF has
+    /// `w > cutoff` (the model has no support there); `y` is then left untouched.
+    pub fn predict(&mut self, x: &[f64], y: &mut [f64]) -> Result<Support, LwprError> {
+        check_len("y", y.len(), self.p.n_out)?;
+        let s = self.predict_impl(x, Want::Plain)?;
+        y.copy_from_slice(&self.ws.y);
+        Ok(s)
+    }
+
+    /// Like [`Lwpr::predict`], also writing a confidence bound per output into `conf`
+    /// (the reference library's `sqrt(Σ w σ²_k + Σ w (ŷ_k − ŷ)²) / Σ w`, in output units).
+    pub fn predict_conf(
+        &mut self,
+        x: &[f64],
+        y: &mut [f64],
+        conf: &mut [f64],
+    ) -> Result<Support, LwprError> {
+        check_len("y", y.len(), self.p.n_out)?;
+        check_len("conf", conf.len(), self.p.n_out)?;
+        let s = self.predict_impl(x, Want::Conf)?;
+        y.copy_from_slice(&self.ws.y);
+        conf.copy_from_slice(&self.ws.conf);
+        Ok(s)
+    }
+
+    /// Like [`Lwpr::predict`], also writing the Jacobian `∂ŷ/∂x` (row-major, `n_out × n_in`,
+    /// user units) into `jac`. RFs at `w ≤ cutoff` are left out, as in the reference library.
+    pub fn predict_jacobian(
+        &mut self,
+        x: &[f64],
+        y: &mut [f64],
+        jac: &mut [f64],
+    ) -> Result<Support, LwprError> {
+        check_len("y", y.len(), self.p.n_out)?;
+        check_len("jac", jac.len(), self.p.n_out * self.p.n_in)?;
+        let s = self.predict_impl(x, Want::Jac)?;
+        y.copy_from_slice(&self.ws.y);
+        jac.copy_from_slice(&self.ws.jac);
+        Ok(s)
+    }
+
+    fn predict_impl(&mut self, x: &[f64], want: Want) -> Result<Support, LwprError> {
+        check_vec("x", x, self.p.n_in)?;
+        let Lwpr { p, subs, ws, .. } = self;
+        ws.load_x(p, x);
+        let (n_in, nk, nr, ml, ny) = (p.n_in, p.nk(), p.nr(), p.mlen(), p.n_local_out());
+        let diag = p.cfg.diag_only;
+        let cutoff = p.cfg.cutoff;
+        let qb = p.q_bound(cutoff);
+        let mut min_sw = f64::INFINITY;
+        if want == Want::Jac {
+            ws.jac.iter_mut().for_each(|v| *v = 0.0);
+        }
+        for (s, sub) in subs.iter().enumerate() {
+            let o0 = s * ny;
+            for o in o0..o0 + ny {
+                ws.yacc[o] = 0.0;
+                ws.wyy[o] = 0.0;
+                ws.wconf[o] = 0.0;
+            }
+            if want == Want::Jac {
+                ws.dwdx.iter_mut().for_each(|v| *v = 0.0);
+            }
+            let kern = if diag { &sub.ds } else { &sub.ms };
+            let mut sum_w = 0.0;
+            for (i, rf) in sub.rfs.iter().enumerate() {
+                if !rf.trustworthy {
+                    continue;
+                }
+                let c = &sub.centers[i * nk..(i + 1) * nk];
+                let md = &kern[i * ml..(i + 1) * ml];
+                let q = quad(diag, c, md, &ws.xk, &mut ws.met.dx);
+                if q >= qb {
+                    continue;
+                }
+                let (w, dwdq, _) = p.kernel(q);
+                if w <= cutoff {
+                    continue;
+                }
+                sum_w += w;
+                let xc = &mut ws.pls.xmz;
+                for k in 0..nr {
+                    xc[k] = ws.xr[k] - rf.mean_x[k];
+                }
+                if want == Want::Jac {
+                    // ∂w/∂x_K = 2 (dw/dq) D (x − c).
+                    let dd = &sub.ds[i * ml..(i + 1) * ml];
+                    for k in 0..nk {
+                        let dxk = ws.xk[k] - c[k];
+                        ws.ddx[k] = if diag { 2.0 * dwdq * dd[k] * dxk } else { 0.0 };
+                    }
+                    if !diag {
+                        for k in 0..nk {
+                            ws.met.dx[k] = ws.xk[k] - c[k];
+                        }
+                        for k in 0..nk {
+                            let row = &dd[k * nk..(k + 1) * nk];
+                            ws.ddx[k] = 2.0 * dwdq * dot(row, &ws.met.dx);
+                        }
+                    }
+                    for k in 0..nk {
+                        ws.dwdx[k] += ws.ddx[k];
+                    }
+                }
+                for (lo, pls) in rf.outs.iter().enumerate() {
+                    let o = o0 + lo;
+                    let yk = if want == Want::Conf {
+                        let np = pls.n_pred(nr).max(1);
+                        let (xu, sv) = (&mut ws.pls.xu, &mut ws.pls.s);
+                        project(pls, nr, np, xc, xu, sv);
+                        let mut yk = pls.beta0;
+                        let mut ss = 0.0;
+                        for j in 0..np {
+                            yk += pls.beta[j] * sv[j];
+                            ss += sv[j] * sv[j] / pls.ss_s2[j];
+                        }
+                        let gamma = pls.sum_e_cv2[np - 1] / (pls.sum_w[np - 1] - pls.ssp);
+                        ws.wconf[o] += w * gamma * (1.0 + w * ss);
+                        yk
+                    } else {
+                        pls.beta0 + dot(&pls.slope, xc)
+                    };
+                    ws.yacc[o] += w * yk;
+                    ws.wyy[o] += w * yk * yk;
+                    if want == Want::Jac {
+                        let row = &mut ws.jac[o * n_in..(o + 1) * n_in];
+                        for (k, &d) in p.rdims.iter().enumerate() {
+                            row[d] += w * pls.slope[k];
+                        }
+                        for (k, &d) in p.kdims.iter().enumerate() {
+                            row[d] += yk * ws.ddx[k];
+                        }
+                    }
+                }
+            }
+            if sum_w <= 0.0 {
+                return Err(LwprError::NoActiveRf { output: o0 });
+            }
+            min_sw = min_sw.min(sum_w);
+            for o in o0..o0 + ny {
+                let yn = ws.yacc[o] / sum_w;
+                let no = p.norm_out[o];
+                ws.y[o] = yn * no;
+                if want == Want::Conf {
+                    let r = ws.wconf[o] + ws.wyy[o] - ws.yacc[o] * yn;
+                    ws.conf[o] = r.abs().sqrt() / sum_w * no;
+                }
+                if want == Want::Jac {
+                    let row = &mut ws.jac[o * n_in..(o + 1) * n_in];
+                    for (k, &d) in p.kdims.iter().enumerate() {
+                        row[d] -= yn * ws.dwdx[k];
+                    }
+                    for (d, v) in row.iter_mut().enumerate() {
+                        *v *= no / (sum_w * p.norm_in[d]);
+                    }
+                }
+            }
+        }
+        Ok(Support { sum_w: min_sw })
+    }
+}
