@@ -166,7 +166,10 @@ pub(crate) fn task_acceleration(
     out: &mut DVector<f64>,
 ) {
     for (k, &axis) in model.task_axes().iter().enumerate() {
-        out[k] = data.jac.row(axis).dot(&qdd.transpose()) + data.jdot_qd[axis];
+        out[k] = (0..qdd.len())
+            .map(|j| data.jac[(axis, j)] * qdd[j])
+            .sum::<f64>()
+            + data.jdot_qd[axis];
     }
 }
 

@@ -143,14 +143,15 @@ pub fn parse_urdf(text: &str) -> Result<Model> {
             .ok_or_else(|| DynamicsError::Urdf("a <joint> has no name".into()))?;
         let ctx = format!("joint '{jname}'");
         let kind = j.attribute("type").unwrap_or("");
-        let movable =
-            match kind {
-                "revolute" | "continuous" => true,
-                "fixed" => false,
-                other => return err(format!(
+        let movable = match kind {
+            "revolute" | "continuous" => true,
+            "fixed" => false,
+            other => {
+                return err(format!(
                     "{ctx}: type '{other}' is not supported (only revolute, continuous and fixed)"
-                )),
-            };
+                ))
+            }
+        };
         if child(j, "mimic").is_some() {
             return err(format!("{ctx}: <mimic> is not supported"));
         }

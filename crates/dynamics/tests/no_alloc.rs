@@ -1,0 +1,79 @@
+//! The hot calls never allocate: a counting global allocator around them.
+
+use osrl_dynamics::sim::SensorNoise;
+use osrl_dynamics::{
+    aba, compute_all, crba, forward_dynamics, gravity, jacobian, kinematics, nonlinear_effects,
+    rnea, robots, Robot, SimConfig, SimRobot,
+};
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+struct Counting;
+static ALLOCS: AtomicUsize = AtomicUsize::new(0);
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, l: Layout) -> *mut u8 {
+        ALLOCS.fetch_add(1, Ordering::SeqCst);
+        unsafe { System.alloc(l) }
+    }
+    unsafe fn dealloc(&self, p: *mut u8, l: Layout) {
+        unsafe { System.dealloc(p, l) }
+    }
+    unsafe fn realloc(&self, p: *mut u8, l: Layout, n: usize) -> *mut u8 {
+        ALLOCS.fetch_add(1, Ordering::SeqCst);
+        unsafe { System.realloc(p, l, n) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+fn allocations(f: impl FnOnce()) -> usize {
+    let before = ALLOCS.load(Ordering::SeqCst);
+    f();
+    ALLOCS.load(Ordering::SeqCst) - before
+}
+
+#[test]
+fn dynamics_calls_and_simulation_steps_do_not_allocate() {
+    for model in [
+        robots::planar3(),
+        robots::sarcos7(),
+        robots::random_arm(9, 5, true),
+    ] {
+        let n = model.nq();
+        let mut data = model.data();
+        let (q, qd, qdd) = (vec![0.3; n], vec![0.2; n], vec![0.1; n]);
+        let count = allocations(|| {
+            rnea(&model, &mut data, &q, &qd, &qdd).unwrap();
+            crba(&model, &mut data, &q).unwrap();
+            aba(&model, &mut data, &q, &qd, &qdd).unwrap();
+            forward_dynamics(&model, &mut data, &q, &qd, &qdd).unwrap();
+            gravity(&model, &mut data, &q).unwrap();
+            nonlinear_effects(&model, &mut data, &q, &qd).unwrap();
+            jacobian(&model, &mut data, &q).unwrap();
+            kinematics(&model, &mut data, &q, &qd).unwrap();
+            compute_all(&model, &mut data, &q, &qd).unwrap();
+        });
+        assert_eq!(count, 0, "{}: dynamics calls allocated", model.name());
+        let cfg = SimConfig {
+            sensor_noise: SensorNoise {
+                q: 1e-3,
+                qd: 1e-3,
+                x: 1e-3,
+                xd: 1e-3,
+                xdd: 1e-2,
+            },
+            actuator_noise: 0.1,
+            ..SimConfig::default()
+        };
+        let mut sim = SimRobot::new(model.clone(), cfg).unwrap();
+        let u = vec![0.5; n];
+        let count = allocations(|| {
+            for _ in 0..100 {
+                sim.step(&u).unwrap();
+            }
+        });
+        assert_eq!(count, 0, "{}: simulation steps allocated", model.name());
+    }
+}
