@@ -4,7 +4,41 @@
 //! maps onto [`LwprConfig`] directly; unknown keys are rejected. [`LwprConfig::validate`] runs
 //! once, in [`crate::Lwpr::new`], and resolves the config into [`crate::params::Params`].
 
-use serde::{Deserialize, Serialize};
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+/// Serde for enums that are untagged in human-readable formats (TOML, JSON) and externally
+/// tagged in binary ones (postcard cannot decode untagged enums).
+macro_rules! dual_serde {
+    ($ty:ident, $h:ident, $b:ident, { $($var:ident($t:ty)),* }) => {
+        #[derive(Serialize, Deserialize)]
+        #[serde(untagged)]
+        enum $h { $($var($t)),* }
+        #[derive(Serialize, Deserialize)]
+        enum $b { $($var($t)),* }
+        impl Serialize for $ty {
+            fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+                if s.is_human_readable() {
+                    match self.clone() { $($ty::$var(v) => $h::$var(v)),* }.serialize(s)
+                } else {
+                    match self.clone() { $($ty::$var(v) => $b::$var(v)),* }.serialize(s)
+                }
+            }
+        }
+        impl<'de> Deserialize<'de> for $ty {
+            fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+                if d.is_human_readable() {
+                    Ok(match $h::deserialize(d)? { $($h::$var(v) => $ty::$var(v)),* })
+                } else {
+                    Ok(match $b::deserialize(d)? { $($b::$var(v) => $ty::$var(v)),* })
+                }
+            }
+        }
+    };
+}
+
+dual_serde!(MetricInit, MetricInitH, MetricInitB,
+    { Scalar(f64), Diagonal(Vec<f64>), Full(Vec<Vec<f64>>) });
+dual_serde!(Norm, NormH, NormB, { Scalar(f64), List(Vec<f64>), Keyword(NormKeyword) });
 
 /// The kernel turning the distance `q = (x − c)ᵀ D (x − c)` into an activation `w`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
@@ -17,9 +51,21 @@ pub enum Kernel {
     Bisquare,
 }
 
+/// Which of two overlapping receptive fields is pruned.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum PruneRule {
+    /// The narrower one (larger trace of `D`), as `shared/LWPR.md` specifies.
+    #[default]
+    Narrower,
+    /// The wider one (smaller trace of `D`), as the reference C library v1.2 actually does
+    /// (its source marks the comparison "original logic was reversed -- check").
+    Wider,
+}
+
 /// The initial distance metric `D` of a new receptive field, in normalised input units.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(untagged)]
+/// In TOML/JSON a number, a list, or a list of rows.
+#[derive(Clone, Debug, PartialEq)]
 pub enum MetricInit {
     /// `r·I`.
     Scalar(f64),
@@ -38,8 +84,8 @@ pub enum NormKeyword {
 }
 
 /// Normalisation divisors for inputs or outputs (no centring).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(untagged)]
+/// In TOML/JSON a number, a list, or `"std"`.
+#[derive(Clone, Debug, PartialEq)]
 pub enum Norm {
     /// The same divisor for every dimension.
     Scalar(f64),
@@ -96,6 +142,8 @@ pub struct LwprConfig {
     pub norm_in: Norm,
     /// Outputs are divided by these (output units). Default 1.
     pub norm_out: Norm,
+    /// Which RF of an overlapping pair is pruned. Default `"narrower"` (`shared/LWPR.md`).
+    pub prune_rule: PruneRule,
     /// Receptive fields with activation `w ≤ cutoff` are skipped when predicting. Default 0.001.
     pub cutoff: f64,
     /// One set of receptive fields shared by all outputs (each RF regresses every output);
@@ -129,6 +177,7 @@ impl Default for LwprConfig {
             kernel: Kernel::Gaussian,
             norm_in: Norm::default(),
             norm_out: Norm::default(),
+            prune_rule: PruneRule::Narrower,
             cutoff: 0.001,
             shared_rfs: false,
             kernel_dims: None,

@@ -1,6 +1,6 @@
 //! The model and one update (`shared/LWPR.md`, "One update").
 
-use crate::config::LwprConfig;
+use crate::config::{LwprConfig, PruneRule};
 use crate::error::check_vec;
 use crate::metric::{self, MetricAcc};
 use crate::params::{Params, W_UPDATE};
@@ -266,11 +266,12 @@ fn update_sub(
         return (w_max, true, false);
     }
     if i2 < usize::MAX && p.kernel(q2).0 > p.cfg.w_prune {
-        // Remove the narrower of the two (larger trace of D).
-        let k = if sub.trace_d(p, i1) > sub.trace_d(p, i2) {
-            i1
-        } else {
-            i2
+        // LWPR.md: remove the narrower of the two (larger trace of D); the C library v1.2
+        // removes the wider one (`PruneRule::Wider`).
+        let narrower_is_1 = sub.trace_d(p, i1) > sub.trace_d(p, i2);
+        let k = match (p.cfg.prune_rule, narrower_is_1) {
+            (PruneRule::Narrower, true) | (PruneRule::Wider, false) => i1,
+            _ => i2,
         };
         events.push(RfEvent::Pruned {
             sub: s,
