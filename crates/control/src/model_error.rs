@@ -1,0 +1,190 @@
+//! Model errors: the analytical controller reads a robot model whose parameters differ from the
+//! simulated robot's.
+
+use crate::error::{ControlError, Result};
+use nalgebra::{Matrix3, Vector3};
+use osrl_dynamics::{Friction, Inertia, Model};
+use rand::{RngExt, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use serde::{Deserialize, Serialize};
+use std::fmt;
+use std::str::FromStr;
+
+/// How the controller's model differs from the truth (all defaults: no error). Written on the
+/// command line as `key=value` pairs, e.g. `mass=1.3,com=0.02,friction=off,payload=0.5,seed=7`
+/// (`none` for no error).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ModelError {
+    /// Factor on every link's mass and rotational inertia (about its centre of mass) in the
+    /// controller's model (`mass=`). Default 1.
+    pub mass_scale: f64,
+    /// Distance (m) by which the controller's model shifts each massive link's centre of mass, in
+    /// a random direction per link drawn from `seed` (`com=`). Default 0.
+    pub com_shift: f64,
+    /// Whether the controller's model includes the joint friction (`friction=on|off`). Default
+    /// true.
+    pub friction: bool,
+    /// Point mass (kg) at the end-effector of the simulated robot that the controller's model
+    /// does not know (`payload=`). Default 0.
+    pub payload: f64,
+    /// Seed of the centre-of-mass shift directions (`seed=`). Default 0.
+    pub seed: u64,
+}
+
+impl Default for ModelError {
+    fn default() -> Self {
+        Self {
+            mass_scale: 1.0,
+            com_shift: 0.0,
+            friction: true,
+            payload: 0.0,
+            seed: 0,
+        }
+    }
+}
+
+impl ModelError {
+    /// `mass_scale` finite and > 0, `com_shift` and `payload` finite and ≥ 0.
+    pub fn validate(&self) -> Result<()> {
+        let ok = self.mass_scale > 0.0
+            && self.mass_scale.is_finite()
+            && self.com_shift >= 0.0
+            && self.com_shift.is_finite()
+            && self.payload >= 0.0
+            && self.payload.is_finite();
+        if ok {
+            Ok(())
+        } else {
+            Err(ControlError::ModelErrorSpec {
+                spec: self.to_string(),
+                reason: "mass must be > 0; com and payload ≥ 0; all finite".into(),
+            })
+        }
+    }
+
+    /// Whether the controller's model equals the truth.
+    pub fn is_none(&self) -> bool {
+        *self == Self {
+            seed: self.seed,
+            ..Self::default()
+        }
+    }
+
+    /// `(simulated robot, controller's model)` from the true model: the payload goes into the
+    /// simulated robot's last link; the scaled masses and inertias, shifted centres of mass and
+    /// missing friction go into the controller's model. Zero-mass links (identified base
+    /// parameters) keep their inertia unscaled and unshifted. The same seed gives the same models.
+    pub fn apply(&self, truth: &Model) -> Result<(Model, Model)> {
+        self.validate()?;
+        let mut sim = truth.spec().clone();
+        if self.payload > 0.0 {
+            let last = sim.links.last_mut().expect("a model has links");
+            let point = Inertia::from_com(self.payload, sim.ee_offset, Matrix3::zeros());
+            last.inertia = last.inertia.add(&point);
+        }
+        let mut ctrl = truth.spec().clone();
+        let mut rng = ChaCha8Rng::seed_from_u64(self.seed);
+        for l in ctrl.links.iter_mut() {
+            let dir = random_unit(&mut rng);
+            let i = l.inertia;
+            if i.mass > 0.0 {
+                let s = self.mass_scale;
+                let com = i.com() + dir * self.com_shift;
+                l.inertia = Inertia::from_com(i.mass * s, com, i.inertia_com() * s);
+            }
+            if !self.friction {
+                l.friction = Friction {
+                    viscous: 0.0,
+                    coulomb: 0.0,
+                    ..l.friction
+                };
+            }
+        }
+        ctrl.name = format!("{} ({})", ctrl.name, self);
+        Ok((Model::new(sim)?, Model::new(ctrl)?))
+    }
+}
+
+fn random_unit(rng: &mut ChaCha8Rng) -> Vector3<f64> {
+    loop {
+        let v = Vector3::new(
+            rng.random_range(-1.0..1.0),
+            rng.random_range(-1.0..1.0),
+            rng.random_range(-1.0..1.0),
+        );
+        let n = v.norm();
+        if n > 0.1 && n <= 1.0 {
+            return v / n;
+        }
+    }
+}
+
+impl fmt::Display for ModelError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.is_none() {
+            return write!(f, "none");
+        }
+        let on = if self.friction { "on" } else { "off" };
+        write!(
+            f,
+            "mass={},com={},friction={on},payload={},seed={}",
+            self.mass_scale, self.com_shift, self.payload, self.seed
+        )
+    }
+}
+
+impl FromStr for ModelError {
+    type Err = ControlError;
+
+    /// Parses `none` or comma-separated `key=value` pairs with keys `mass`, `com`, `friction`
+    /// (`on`/`off`/`true`/`false`), `payload`, `seed`; unnamed keys keep their defaults.
+    fn from_str(spec: &str) -> Result<Self> {
+        let err = |reason: String| ControlError::ModelErrorSpec {
+            spec: spec.to_string(),
+            reason,
+        };
+        let mut me = ModelError::default();
+        let spec_t = spec.trim();
+        if spec_t.is_empty() || spec_t == "none" {
+            return Ok(me);
+        }
+        for part in spec_t.split(',') {
+            let (k, v) = part
+                .split_once('=')
+                .ok_or_else(|| err(format!("'{part}' is not key=value")))?;
+            let (k, v) = (k.trim(), v.trim());
+            let num = || {
+                v.parse::<f64>()
+                    .map_err(|_| err(format!("{k}: '{v}' is not a number")))
+            };
+            match k {
+                "mass" => me.mass_scale = num()?,
+                "com" => me.com_shift = num()?,
+                "payload" => me.payload = num()?,
+                "seed" => {
+                    me.seed = v
+                        .parse()
+                        .map_err(|_| err(format!("seed: '{v}' is not an integer")))?
+                }
+                "friction" => {
+                    me.friction = match v {
+                        "on" | "true" => true,
+                        "off" | "false" => false,
+                        _ => return Err(err(format!("friction: '{v}' is not on/off"))),
+                    }
+                }
+                _ => {
+                    return Err(err(format!(
+                        "unknown key '{k}' (keys: mass, com, friction, payload, seed)"
+                    )))
+                }
+            }
+        }
+        me.validate().map_err(|e| match e {
+            ControlError::ModelErrorSpec { reason, .. } => err(reason),
+            e => e,
+        })?;
+        Ok(me)
+    }
+}

@@ -1,0 +1,253 @@
+//! Task-space trajectories: figure-8, circle and cyclic point-to-point minimum-jerk moves. Each
+//! gives the desired world-frame position, velocity and acceleration of the end-effector at any
+//! time, starting at rest on the path.
+
+use crate::error::{ControlError, Result};
+use crate::warp::TimeWarp;
+use nalgebra::Vector3;
+use std::f64::consts::TAU;
+
+/// Desired end-effector state at one time, in the world frame (m, m/s, m/s²). A controller reads
+/// the rows of its model's task axes.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Target {
+    pub x: Vector3<f64>,
+    pub xd: Vector3<f64>,
+    pub xdd: Vector3<f64>,
+}
+
+/// The path of a trajectory.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Shape {
+    /// `p(φ) = c + a·sin(φ)·e1 + b·sin(2φ)·e2`: a figure-8 lying on its side, `2a` wide along
+    /// `e1` and `2b` tall along `e2`, through its centre at `φ = 0`.
+    Figure8 {
+        centre: Vector3<f64>,
+        e1: Vector3<f64>,
+        e2: Vector3<f64>,
+        a: f64,
+        b: f64,
+    },
+    /// `p(φ) = c + r·(cos(φ)·e1 + sin(φ)·e2)`, starting at `c + r·e1`.
+    Circle {
+        centre: Vector3<f64>,
+        e1: Vector3<f64>,
+        e2: Vector3<f64>,
+        radius: f64,
+    },
+    /// Minimum-jerk moves `P_i → P_{i+1}` (and from the last point back to the first), each
+    /// taking `move_time` seconds with zero velocity and acceleration at every point:
+    /// `x = P_i + (P_{i+1} − P_i)(10τ³ − 15τ⁴ + 6τ⁵)`, `τ` the fraction of the move.
+    MinJerk {
+        points: Vec<Vector3<f64>>,
+        move_time: f64,
+    },
+}
+
+/// A periodic task-space trajectory: a [`Shape`] traversed once per `period`, with a smooth start
+/// ([`TimeWarp`]) for the figure-8 and the circle (minimum-jerk moves start at rest by
+/// themselves).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Trajectory {
+    shape: Shape,
+    period: f64,
+    warp: TimeWarp,
+}
+
+fn finite(what: &str, v: &Vector3<f64>) -> Result<()> {
+    if v.iter().all(|x| x.is_finite()) {
+        Ok(())
+    } else {
+        Err(ControlError::InvalidTrajectory(format!(
+            "{what} {v:?} is not finite"
+        )))
+    }
+}
+
+/// Normalised plane directions; fails on zero, non-finite or (nearly) parallel vectors.
+fn plane(e1: Vector3<f64>, e2: Vector3<f64>) -> Result<(Vector3<f64>, Vector3<f64>)> {
+    finite("e1", &e1)?;
+    finite("e2", &e2)?;
+    let bad = |m: &str| Err(ControlError::InvalidTrajectory(m.into()));
+    if e1.norm() < 1e-9 || e2.norm() < 1e-9 {
+        return bad("the plane directions e1 and e2 must be non-zero");
+    }
+    let (u, v) = (e1.normalize(), e2.normalize());
+    if u.dot(&v).abs() > 0.99 {
+        return bad("the plane directions e1 and e2 are (nearly) parallel");
+    }
+    Ok((u, v))
+}
+
+fn positive(what: &str, v: f64) -> Result<()> {
+    if v > 0.0 && v.is_finite() {
+        Ok(())
+    } else {
+        Err(ControlError::InvalidTrajectory(format!(
+            "{what} must be a positive number, got {v}"
+        )))
+    }
+}
+
+impl Trajectory {
+    /// A figure-8 (see [`Shape::Figure8`]) with period `period` (s) and start ramp `ramp` (s).
+    /// `e1`, `e2` are normalised. Fails on non-finite values, a non-positive size or period, a
+    /// negative ramp, or parallel directions.
+    #[allow(clippy::too_many_arguments)]
+    pub fn figure8(
+        centre: Vector3<f64>,
+        e1: Vector3<f64>,
+        e2: Vector3<f64>,
+        a: f64,
+        b: f64,
+        period: f64,
+        ramp: f64,
+    ) -> Result<Self> {
+        finite("centre", &centre)?;
+        let (e1, e2) = plane(e1, e2)?;
+        positive("figure-8 width a", a)?;
+        positive("figure-8 height b", b)?;
+        let shape = Shape::Figure8 {
+            centre,
+            e1,
+            e2,
+            a,
+            b,
+        };
+        Self::periodic(shape, period, ramp)
+    }
+
+    /// A circle (see [`Shape::Circle`]); same checks as [`Trajectory::figure8`].
+    pub fn circle(
+        centre: Vector3<f64>,
+        e1: Vector3<f64>,
+        e2: Vector3<f64>,
+        radius: f64,
+        period: f64,
+        ramp: f64,
+    ) -> Result<Self> {
+        finite("centre", &centre)?;
+        let (e1, e2) = plane(e1, e2)?;
+        positive("circle radius", radius)?;
+        let shape = Shape::Circle {
+            centre,
+            e1,
+            e2,
+            radius,
+        };
+        Self::periodic(shape, period, ramp)
+    }
+
+    /// Cyclic minimum-jerk moves through `points` (at least two, finite), `move_time` s each.
+    pub fn min_jerk(points: Vec<Vector3<f64>>, move_time: f64) -> Result<Self> {
+        if points.len() < 2 {
+            return Err(ControlError::InvalidTrajectory(
+                "minimum-jerk moves need at least two points".into(),
+            ));
+        }
+        for p in &points {
+            finite("point", p)?;
+        }
+        positive("move_time", move_time)?;
+        let period = move_time * points.len() as f64;
+        let shape = Shape::MinJerk { points, move_time };
+        Ok(Self {
+            shape,
+            period,
+            warp: TimeWarp { ramp: 0.0 },
+        })
+    }
+
+    fn periodic(shape: Shape, period: f64, ramp: f64) -> Result<Self> {
+        positive("period", period)?;
+        if !(ramp >= 0.0 && ramp.is_finite()) {
+            return Err(ControlError::InvalidTrajectory(format!(
+                "ramp must be ≥ 0 s, got {ramp}"
+            )));
+        }
+        Ok(Self {
+            shape,
+            period,
+            warp: TimeWarp { ramp },
+        })
+    }
+
+    pub fn shape(&self) -> &Shape {
+        &self.shape
+    }
+    /// Duration of one cycle (s).
+    pub fn period(&self) -> f64 {
+        self.period
+    }
+    /// The start ramp (s); 0 for minimum-jerk moves.
+    pub fn ramp(&self) -> f64 {
+        self.warp.ramp
+    }
+
+    /// Desired position, velocity and acceleration at time `t` (s; times before 0 give the start).
+    pub fn sample(&self, t: f64) -> Target {
+        match &self.shape {
+            Shape::Figure8 {
+                centre,
+                e1,
+                e2,
+                a,
+                b,
+            } => self.warped(t, |phi| {
+                let (s1, c1) = phi.sin_cos();
+                let (s2, c2) = (2.0 * phi).sin_cos();
+                (
+                    centre + e1 * (a * s1) + e2 * (b * s2),
+                    e1 * (a * c1) + e2 * (2.0 * b * c2),
+                    -e1 * (a * s1) - e2 * (4.0 * b * s2),
+                )
+            }),
+            Shape::Circle {
+                centre,
+                e1,
+                e2,
+                radius,
+            } => self.warped(t, |phi| {
+                let (s, c) = phi.sin_cos();
+                let p = (e1 * c + e2 * s) * *radius;
+                let dp = (e2 * c - e1 * s) * *radius;
+                (centre + p, dp, -p)
+            }),
+            Shape::MinJerk { points, move_time } => {
+                let t = t.max(0.0) % self.period;
+                let k = ((t / move_time) as usize).min(points.len() - 1);
+                let tau = (t - k as f64 * move_time) / move_time;
+                let (p0, p1) = (points[k], points[(k + 1) % points.len()]);
+                let d = p1 - p0;
+                let (t2, t3) = (tau * tau, tau * tau * tau);
+                Target {
+                    x: p0 + d * (t3 * (10.0 - 15.0 * tau + 6.0 * t2)),
+                    xd: d * (30.0 * t2 * (1.0 - 2.0 * tau + t2) / move_time),
+                    xdd: d * (60.0 * tau * (1.0 - 3.0 * tau + 2.0 * t2) / (move_time * move_time)),
+                }
+            }
+        }
+    }
+
+    /// Chain rule through `φ = ω s(t)`: `ẋ = p'(φ) ω ṡ`, `ẍ = p''(φ) (ω ṡ)² + p'(φ) ω s̈`.
+    #[inline]
+    fn warped<F>(&self, t: f64, path: F) -> Target
+    where
+        F: Fn(f64) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>),
+    {
+        let w = TAU / self.period;
+        let (s, sd, sdd) = self.warp.eval(t);
+        let (p, dp, ddp) = path(w * s);
+        let rate = w * sd;
+        Target {
+            x: p,
+            xd: dp * rate,
+            xdd: ddp * (rate * rate) + dp * (w * sdd),
+        }
+    }
+
+    /// Start point `x_d(0)`.
+    pub fn start(&self) -> Vector3<f64> {
+        self.sample(0.0).x
+    }
+}
