@@ -4,6 +4,7 @@
 //! object on its last stdout line; errors go to stderr as one line and exit non-zero.
 
 mod cmd;
+mod plot;
 mod util;
 
 use clap::{Parser, Subcommand};
@@ -17,17 +18,23 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
+    /// LWPR regression: `osrl lwpr fit --train A.csv --test B.csv --inputs K`.
+    Lwpr(cmd::lwpr::Args),
     /// Print a robot model (built-in name or URDF file), e.g. as URDF.
     Robot(cmd::robot::Args),
     /// Kinematics and dynamics of a robot at one state.
     Dynamics(cmd::dynamics::Args),
+    /// Fig. 1 experiment: adaptive vs fixed reward transformation of RWR on a 1-D toy problem.
+    Toy(cmd::toy::Args),
 }
 
 fn main() {
     let cli = Cli::parse();
     let result = match cli.command {
+        Command::Lwpr(a) => cmd::lwpr::run(a),
         Command::Robot(a) => cmd::robot::run(a),
         Command::Dynamics(a) => cmd::dynamics::run(a),
+        Command::Toy(a) => cmd::toy::run(a),
     };
     if let Err(e) = result {
         // One line: the whole cause chain.

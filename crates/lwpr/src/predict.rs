@@ -65,7 +65,33 @@ impl Lwpr {
         Ok(s)
     }
 
+    /// Predicts every output it can: writes into `support` each output's total activation
+    /// `Σ w`, and where that is 0 (no RF active) sets the output to 0 as the reference library
+    /// does. Never fails with [`LwprError::NoActiveRf`].
+    pub fn predict_with_support(
+        &mut self,
+        x: &[f64],
+        y: &mut [f64],
+        support: &mut [f64],
+    ) -> Result<(), LwprError> {
+        check_len("y", y.len(), self.p.n_out)?;
+        check_len("support", support.len(), self.p.n_out)?;
+        self.predict_impl_mode(x, Want::Plain, false)?;
+        y.copy_from_slice(&self.ws.y);
+        support.copy_from_slice(&self.ws.support);
+        Ok(())
+    }
+
     fn predict_impl(&mut self, x: &[f64], want: Want) -> Result<Support, LwprError> {
+        self.predict_impl_mode(x, want, true)
+    }
+
+    fn predict_impl_mode(
+        &mut self,
+        x: &[f64],
+        want: Want,
+        strict: bool,
+    ) -> Result<Support, LwprError> {
         check_vec("x", x, self.p.n_in)?;
         let Lwpr { p, subs, ws, .. } = self;
         ws.load_x(p, x);
@@ -159,11 +185,19 @@ impl Lwpr {
                     }
                 }
             }
-            if sum_w <= 0.0 {
+            if sum_w <= 0.0 && strict {
                 return Err(LwprError::NoActiveRf { output: o0 });
             }
             min_sw = min_sw.min(sum_w);
+            if sum_w <= 0.0 {
+                for o in o0..o0 + ny {
+                    ws.y[o] = 0.0;
+                    ws.support[o] = 0.0;
+                }
+                continue;
+            }
             for o in o0..o0 + ny {
+                ws.support[o] = sum_w;
                 let yn = ws.yacc[o] / sum_w;
                 let no = p.norm_out[o];
                 ws.y[o] = yn * no;

@@ -37,6 +37,8 @@ pub(crate) struct Scratch {
     pub dwdx: Vec<f64>,
     /// `D (x − c)`.
     pub ddx: Vec<f64>,
+    /// Per-output `Σ w` of the last prediction.
+    pub support: Vec<f64>,
     /// Prediction made during the last update (normalised until the end of the update).
     pub last_yp: Vec<f64>,
 }
@@ -61,6 +63,7 @@ impl Scratch {
             jac: vec![0.0; n_out * n_in],
             dwdx: vec![0.0; nk],
             ddx: vec![0.0; nk],
+            support: vec![0.0; n_out],
             last_yp: vec![f64::NAN; n_out],
         }
     }

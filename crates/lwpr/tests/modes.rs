@@ -1,6 +1,6 @@
 //! Shared receptive fields, localised kernels (paper eq. 32–33), partition access, events,
-#![allow(clippy::needless_range_loop)]
 //! Jacobian and confidence.
+#![allow(clippy::needless_range_loop)]
 
 mod common;
 

@@ -2,3 +2,5 @@
 
 pub mod dynamics;
 pub mod robot;
+pub mod lwpr;
+pub mod toy;
