@@ -17,7 +17,11 @@ fn bench(c: &mut Criterion) {
     let target = traj.sample(1.7);
     let mut u = vec![0.0; 7];
     for (name, law, metric) in [
-        ("eq7_identity_command_sarcos7", Law::Eq7, MetricKind::Identity),
+        (
+            "eq7_identity_command_sarcos7",
+            Law::Eq7,
+            MetricKind::Identity,
+        ),
         ("eq7_mass_command_sarcos7", Law::Eq7, MetricKind::Mass),
         ("eq4_command_sarcos7", Law::Eq4, MetricKind::Identity),
     ] {

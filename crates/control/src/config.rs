@@ -72,7 +72,10 @@ impl OscConfig {
         self.gains.validate()?;
         let bad = |m: String| Err(ControlError::InvalidConfig(m));
         if !(self.nominal_scale >= 0.0 && self.nominal_scale.is_finite()) {
-            return bad(format!("nominal_scale {} must be finite and ≥ 0", self.nominal_scale));
+            return bad(format!(
+                "nominal_scale {} must be finite and ≥ 0",
+                self.nominal_scale
+            ));
         }
         if !(0.0..1.0).contains(&self.damping_threshold) {
             return bad(format!(

@@ -59,7 +59,11 @@ pub fn solve_ik(
             ((a + opts.margin).min(mid), (b - opts.margin).max(mid))
         })
         .unzip();
-    let clamp = |q: &mut [f64]| q.iter_mut().enumerate().for_each(|(i, v)| *v = v.clamp(lo[i], hi[i]));
+    let clamp = |q: &mut [f64]| {
+        q.iter_mut()
+            .enumerate()
+            .for_each(|(i, v)| *v = v.clamp(lo[i], hi[i]))
+    };
     clamp(q);
     let mut err = f64::INFINITY;
     for _ in 0..opts.max_iter {
@@ -118,7 +122,10 @@ pub fn check_reachable(model: &Model, traj: &Trajectory, opts: &IkOptions) -> Re
     let axes = model.task_axes();
     let links = model.links();
     let base = links[0].origin.trans;
-    let reach: f64 = links[1..].iter().map(|l| l.origin.trans.norm()).sum::<f64>()
+    let reach: f64 = links[1..]
+        .iter()
+        .map(|l| l.origin.trans.norm())
+        .sum::<f64>()
         + model.spec().ee_offset.norm();
     let samples = opts.samples.max(8);
     let times: Vec<f64> = (0..=samples)
@@ -126,7 +133,11 @@ pub fn check_reachable(model: &Model, traj: &Trajectory, opts: &IkOptions) -> Re
         .collect();
     for &t in std::iter::once(&0.0).chain(&times) {
         let p = traj.sample(t).x;
-        let d: f64 = axes.iter().map(|&a| (p[a] - base[a]).powi(2)).sum::<f64>().sqrt();
+        let d: f64 = axes
+            .iter()
+            .map(|&a| (p[a] - base[a]).powi(2))
+            .sum::<f64>()
+            .sqrt();
         if d > reach {
             return Err(ControlError::Unreachable(format!(
                 "x_d(t = {t:.3} s) = ({:.3}, {:.3}, {:.3}) m is {d:.3} m from the first joint; \

@@ -20,7 +20,7 @@ pub(crate) fn cholesky_in_place(a: &mut DMatrix<f64>) -> Result<(), usize> {
         for k in 0..j {
             d -= a[(j, k)] * a[(j, k)];
         }
-        if !(d > tol) || !d.is_finite() {
+        if !d.is_finite() || d <= tol {
             return Err(j);
         }
         let d = d.sqrt();

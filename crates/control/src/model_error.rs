@@ -65,10 +65,11 @@ impl ModelError {
 
     /// Whether the controller's model equals the truth.
     pub fn is_none(&self) -> bool {
-        *self == Self {
-            seed: self.seed,
-            ..Self::default()
-        }
+        *self
+            == Self {
+                seed: self.seed,
+                ..Self::default()
+            }
     }
 
     /// `(simulated robot, controller's model)` from the true model: the payload goes into the

@@ -190,7 +190,14 @@ impl TaskController for Osc {
         compute_all(&self.model, &mut self.ws.data, q, qd)?;
         let axes = self.model.spec().task_axes.as_slice();
         let xr = &mut self.xdd_ref[..m];
-        reference_acceleration(&self.cfg.gains, target, axes, meas.x.as_slice(), meas.xd.as_slice(), xr);
+        reference_acceleration(
+            &self.cfg.gains,
+            target,
+            axes,
+            meas.x.as_slice(),
+            meas.xd.as_slice(),
+            xr,
+        );
         match self.cfg.law {
             Law::Eq4 => self.u0.fill(0.0),
             Law::Eq7 => {
@@ -279,8 +286,8 @@ fn eq7(
         }
     }
     // G = B N⁻¹ Bᵀ = A Aᵀ, and r = b − B u0 = ẍ_ref − J̇q̇ + B (h − u0).
-    for i in 0..n {
-        ws.v[i] = d.h[i] - u0[i];
+    for (v, (h, u0)) in ws.v.iter_mut().zip(d.h.iter().zip(u0)) {
+        *v = h - u0;
     }
     let mut g = Matrix3::zeros();
     let mut r = Vector3::zeros();
@@ -309,26 +316,16 @@ fn eq7(
         )));
     };
     let y = chol.solve(&r);
-    let mut finite = true;
-    for i in 0..n {
-        let mut s = 0.0;
-        for k in 0..m {
-            s += ws.w[(i, k)] * y[k];
-        }
-        finite &= (u0[i] + s).is_finite();
+    // u = u0 + W y, assembled in the scratch vector so that a failure leaves `u` unchanged.
+    for (i, v) in ws.v.iter_mut().enumerate() {
+        *v = u0[i] + (0..m).map(|k| ws.w[(i, k)] * y[k]).sum::<f64>();
     }
-    if !finite {
+    if ws.v.iter().any(|v| !v.is_finite()) {
         return Err(ControlError::Singular(format!(
             "the command is not finite (σ_min/σ_max = {sigma_ratio:.2e}, λ² = {lambda2:.2e})"
         )));
     }
-    for i in 0..n {
-        let mut s = 0.0;
-        for k in 0..m {
-            s += ws.w[(i, k)] * y[k];
-        }
-        u[i] = u0[i] + s;
-    }
+    u.copy_from_slice(ws.v.as_slice());
     Ok(CommandInfo {
         lambda2,
         sigma_ratio,

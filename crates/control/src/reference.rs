@@ -15,7 +15,10 @@ pub struct TaskGains {
 
 impl Default for TaskGains {
     fn default() -> Self {
-        Self { kp: 900.0, kd: 60.0 }
+        Self {
+            kp: 900.0,
+            kd: 60.0,
+        }
     }
 }
 
@@ -46,6 +49,7 @@ pub fn reference_acceleration(
     out: &mut [f64],
 ) {
     for (k, &a) in axes.iter().enumerate() {
-        out[k] = target.xdd[a] + gains.kd * (target.xd[a] - xd[k]) + gains.kp * (target.x[a] - x[k]);
+        out[k] =
+            target.xdd[a] + gains.kd * (target.xd[a] - xd[k]) + gains.kp * (target.x[a] - x[k]);
     }
 }

@@ -152,7 +152,10 @@ impl TrajectoryConfig {
                         names[k],
                         p[k],
                         model.name(),
-                        axes.iter().map(|&a| names[a]).collect::<Vec<_>>().join(", ")
+                        axes.iter()
+                            .map(|&a| names[a])
+                            .collect::<Vec<_>>()
+                            .join(", ")
                     )));
                 }
             }
@@ -177,7 +180,12 @@ impl TrajectoryConfig {
             TrajectoryKind::MinJerk => {
                 let points: Vec<Vector3<f64>> = if self.points.is_empty() {
                     let (u, w) = (e1.normalize() * a, e2.normalize() * b);
-                    vec![centre - u - w, centre + u - w, centre + u + w, centre - u + w]
+                    vec![
+                        centre - u - w,
+                        centre + u - w,
+                        centre + u + w,
+                        centre - u + w,
+                    ]
                 } else {
                     self.points.iter().map(|p| Vector3::from(*p)).collect()
                 };

@@ -9,7 +9,12 @@ use nalgebra::{DMatrix, DVector};
 use osrl_control::{ControlError, Law, MetricKind, Osc, OscConfig};
 use osrl_dynamics::{robots, Robot, SimConfig, SimRobot};
 
-fn osc(model: &osrl_dynamics::Model, law: Law, metric: MetricKind, n: Option<&DMatrix<f64>>) -> Osc {
+fn osc(
+    model: &osrl_dynamics::Model,
+    law: Law,
+    metric: MetricKind,
+    n: Option<&DMatrix<f64>>,
+) -> Osc {
     let cfg = OscConfig {
         law,
         metric,
@@ -20,7 +25,16 @@ fn osc(model: &osrl_dynamics::Model, law: Law, metric: MetricKind, n: Option<&DM
 }
 
 /// Random states, random SPD metrics, random u0 and ẍ_ref on every model.
-fn cases(mut f: impl FnMut(&osrl_dynamics::Model, &[f64], &[f64], &DMatrix<f64>, &DVector<f64>, &DVector<f64>)) {
+fn cases(
+    mut f: impl FnMut(
+        &osrl_dynamics::Model,
+        &[f64],
+        &[f64],
+        &DMatrix<f64>,
+        &DVector<f64>,
+        &DVector<f64>,
+    ),
+) {
     let mut r = rng(42);
     for model in models() {
         for _ in 0..20 {
@@ -44,7 +58,9 @@ fn eq7_command_produces_the_reference_acceleration() {
         ] {
             let mut c = osc(model, Law::Eq7, metric, nm);
             let mut u = vec![0.0; model.nq()];
-            let info = c.solve(q, qd, xr.as_slice(), u0.as_slice(), &mut u).unwrap();
+            let info = c
+                .solve(q, qd, xr.as_slice(), u0.as_slice(), &mut u)
+                .unwrap();
             if info.lambda2 > 0.0 {
                 continue; // damped near a singularity: the constraint holds only approximately
             }
@@ -76,7 +92,11 @@ fn one_simulated_step_with_u_star_gives_the_reference_acceleration() {
             }
             let mut errs = vec![];
             for dt in [2e-3, 1e-4] {
-                let cfg = SimConfig { control_period: dt, joint_limits: false, ..SimConfig::default() };
+                let cfg = SimConfig {
+                    control_period: dt,
+                    joint_limits: false,
+                    ..SimConfig::default()
+                };
                 let mut sim = SimRobot::new(model.clone(), cfg).unwrap();
                 let xd0 = sim.reset(&q, &qd).unwrap().xd.clone();
                 let m = sim.step(&u).unwrap();
@@ -84,7 +104,10 @@ fn one_simulated_step_with_u_star_gives_the_reference_acceleration() {
                 errs.push((mean - DVector::from_vec(xr.clone())).amax());
             }
             assert!(errs[1] < 0.02, "{errs:?}"); // 1 % of the ẍ_ref scale at 0.1 ms
-            assert!(errs[1] < errs[0] / 10.0 + 1e-9, "error does not shrink with the period: {errs:?}");
+            assert!(
+                errs[1] < errs[0] / 10.0 + 1e-9,
+                "error does not shrink with the period: {errs:?}"
+            );
             checked += 1;
         }
         assert!(checked >= 5, "too few states checked: {checked}");
@@ -97,18 +120,31 @@ fn eq7_matches_the_literal_formula_of_design_md() {
         let d = dynamics(model, q, qd);
         let mut c = osc(model, Law::Eq7, MetricKind::Matrix, Some(n));
         let mut u = vec![0.0; model.nq()];
-        if c.solve(q, qd, xr.as_slice(), u0.as_slice(), &mut u).unwrap().lambda2 > 0.0 {
+        if c.solve(q, qd, xr.as_slice(), u0.as_slice(), &mut u)
+            .unwrap()
+            .lambda2
+            > 0.0
+        {
             return;
         }
         let lit = eq7_literal(&d, n, xr, u0);
-        assert_relative_eq!(DVector::from_vec(u.clone()), lit.clone(), epsilon = 1e-6 * (1.0 + lit.amax()));
+        assert_relative_eq!(
+            DVector::from_vec(u.clone()),
+            lit.clone(),
+            epsilon = 1e-6 * (1.0 + lit.amax())
+        );
         // N = I and N = M through their own code paths.
         let eye = DMatrix::identity(model.nq(), model.nq());
         for (metric, nm) in [(MetricKind::Identity, eye), (MetricKind::Mass, d.m.clone())] {
             let mut c = osc(model, Law::Eq7, metric, None);
-            c.solve(q, qd, xr.as_slice(), u0.as_slice(), &mut u).unwrap();
+            c.solve(q, qd, xr.as_slice(), u0.as_slice(), &mut u)
+                .unwrap();
             let lit = eq7_literal(&d, &nm, xr, u0);
-            assert_relative_eq!(DVector::from_vec(u.clone()), lit.clone(), epsilon = 1e-6 * (1.0 + lit.amax()));
+            assert_relative_eq!(
+                DVector::from_vec(u.clone()),
+                lit.clone(),
+                epsilon = 1e-6 * (1.0 + lit.amax())
+            );
         }
     });
 }
@@ -119,7 +155,11 @@ fn no_null_space_step_lowers_the_cost() {
         let d = dynamics(model, q, qd);
         let mut c = osc(model, Law::Eq7, MetricKind::Matrix, Some(n));
         let mut u = vec![0.0; model.nq()];
-        if c.solve(q, qd, xr.as_slice(), u0.as_slice(), &mut u).unwrap().lambda2 > 0.0 {
+        if c.solve(q, qd, xr.as_slice(), u0.as_slice(), &mut u)
+            .unwrap()
+            .lambda2
+            > 0.0
+        {
             return;
         }
         let u = DVector::from_vec(u);
@@ -140,7 +180,11 @@ fn no_null_space_step_lowers_the_cost() {
                 assert!(c1 >= c0 - 1e-9 * (1.0 + c0), "{c1} < {c0}");
                 // The cost is exactly quadratic around the optimum: no linear term.
                 let expect = eps * eps * (z.transpose() * n * &z)[0];
-                assert!((c1 - c0 - expect).abs() < 1e-7 * (1.0 + c0), "{} vs {expect}", c1 - c0);
+                assert!(
+                    (c1 - c0 - expect).abs() < 1e-7 * (1.0 + c0),
+                    "{} vs {expect}",
+                    c1 - c0
+                );
             }
         }
     });
@@ -153,7 +197,12 @@ fn eq4_equals_eq7_with_inverse_mass_metric_and_zero_u0() {
         let zero = vec![0.0; model.nq()];
         let mut u4 = vec![0.0; model.nq()];
         let mut c4 = osc(model, Law::Eq4, MetricKind::Identity, None);
-        if c4.solve(q, qd, xr.as_slice(), &zero, &mut u4).unwrap().lambda2 > 0.0 {
+        if c4
+            .solve(q, qd, xr.as_slice(), &zero, &mut u4)
+            .unwrap()
+            .lambda2
+            > 0.0
+        {
             return;
         }
         let lit = eq4_literal(&d, xr);
@@ -175,13 +224,20 @@ fn the_null_space_term_leaves_the_task_acceleration_unchanged() {
         let mut c = osc(model, Law::Eq7, MetricKind::Matrix, Some(n));
         let (mut with, mut without) = (vec![0.0; model.nq()], vec![0.0; model.nq()]);
         let zero = vec![0.0; model.nq()];
-        if c.solve(q, qd, xr.as_slice(), u0.as_slice(), &mut with).unwrap().lambda2 > 0.0 {
+        if c.solve(q, qd, xr.as_slice(), u0.as_slice(), &mut with)
+            .unwrap()
+            .lambda2
+            > 0.0
+        {
             return;
         }
         c.solve(q, qd, xr.as_slice(), &zero, &mut without).unwrap();
         let diff = DVector::from_vec(with.clone()) - DVector::from_vec(without.clone());
         assert!(diff.amax() > 1e-6, "u0 should change the command");
-        let (a, b) = (task_accel(model, q, qd, &with), task_accel(model, q, qd, &without));
+        let (a, b) = (
+            task_accel(model, q, qd, &with),
+            task_accel(model, q, qd, &without),
+        );
         assert_relative_eq!(a, b, epsilon = 1e-7 * (1.0 + xr.amax()));
     });
 }
@@ -197,14 +253,29 @@ fn bad_metrics_are_rejected_with_a_clear_error() {
         };
         Osc::new(model.clone(), cfg).unwrap_err()
     };
-    let indefinite = vec![vec![1.0, 0.0, 0.0], vec![0.0, -1.0, 0.0], vec![0.0, 0.0, 1.0]];
+    let indefinite = vec![
+        vec![1.0, 0.0, 0.0],
+        vec![0.0, -1.0, 0.0],
+        vec![0.0, 0.0, 1.0],
+    ];
     let e = bad(indefinite);
-    assert!(matches!(e, ControlError::MetricNotPositiveDefinite(_)), "{e}");
+    assert!(
+        matches!(e, ControlError::MetricNotPositiveDefinite(_)),
+        "{e}"
+    );
     assert!(e.to_string().contains("Cholesky"), "{e}");
-    let asym = vec![vec![2.0, 1.0, 0.0], vec![0.0, 2.0, 0.0], vec![0.0, 0.0, 1.0]];
+    let asym = vec![
+        vec![2.0, 1.0, 0.0],
+        vec![0.0, 2.0, 0.0],
+        vec![0.0, 0.0, 1.0],
+    ];
     assert!(bad(asym).to_string().contains("symmetric"));
     assert!(bad(vec![vec![1.0]]).to_string().contains("3×3"));
-    let nan = vec![vec![f64::NAN, 0.0, 0.0], vec![0.0, 1.0, 0.0], vec![0.0, 0.0, 1.0]];
+    let nan = vec![
+        vec![f64::NAN, 0.0, 0.0],
+        vec![0.0, 1.0, 0.0],
+        vec![0.0, 0.0, 1.0],
+    ];
     assert!(bad(nan).to_string().contains("finite"));
     // A matrix without metric = "matrix" (and vice versa) is a config error.
     let cfg = OscConfig {
@@ -253,7 +324,11 @@ fn singular_configuration_is_damped_or_a_clear_error_never_nan() {
         c.solve(&[0.0, e, 0.0], &qd, &xr, &zero, &mut u).unwrap();
         assert!(u.iter().all(|v| v.is_finite() && v.abs() < 1e3));
         if let Some(p) = prev {
-            let jump = p.iter().zip(&u).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+            let jump = p
+                .iter()
+                .zip(&u)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max);
             assert!(jump < 50.0, "jump {jump} at elbow {e}");
         }
         prev = Some(u);
@@ -271,11 +346,27 @@ fn bad_inputs_give_errors_and_leave_the_command_unchanged() {
     let mut bad_q = q.clone();
     bad_q[2] = f64::NAN;
     assert!(c.solve(&bad_q, &qd, &[0.0; 3], &zero, &mut u).is_err());
-    assert!(c.solve(&q, &qd, &[0.0, f64::INFINITY, 0.0], &zero, &mut u).is_err());
+    assert!(c
+        .solve(&q, &qd, &[0.0, f64::INFINITY, 0.0], &zero, &mut u)
+        .is_err());
     assert!(c.solve(&q, &qd, &[0.0; 2], &zero, &mut u).is_err());
     assert!(c.solve(&q, &qd, &[0.0; 3], &zero[..6], &mut u).is_err());
     assert!(c.solve(&q, &qd, &[0.0; 3], &zero, &mut u[..6]).is_err());
     assert_eq!(u, vec![3.0; 7]);
-    assert!(Osc::new(model.clone(), OscConfig { damping_threshold: 1.5, ..OscConfig::default() }).is_err());
-    assert!(Osc::new(model, OscConfig { nominal_scale: f64::NAN, ..OscConfig::default() }).is_err());
+    assert!(Osc::new(
+        model.clone(),
+        OscConfig {
+            damping_threshold: 1.5,
+            ..OscConfig::default()
+        }
+    )
+    .is_err());
+    assert!(Osc::new(
+        model,
+        OscConfig {
+            nominal_scale: f64::NAN,
+            ..OscConfig::default()
+        }
+    )
+    .is_err());
 }

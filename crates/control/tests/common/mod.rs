@@ -78,7 +78,12 @@ pub fn sqrtm(n: &DMatrix<f64>) -> DMatrix<f64> {
 
 /// Eq. 7 exactly as printed in DESIGN.md §3, with the symmetric square root and nalgebra's own
 /// inverses: `u* = N^(−1/2) A⁺ b + N^(−1/2)(I − A⁺A) N^(1/2) u0`, `A = J M⁻¹ N^(−1/2)`.
-pub fn eq7_literal(d: &Dyn, n: &DMatrix<f64>, xdd_ref: &DVector<f64>, u0: &DVector<f64>) -> DVector<f64> {
+pub fn eq7_literal(
+    d: &Dyn,
+    n: &DMatrix<f64>,
+    xdd_ref: &DVector<f64>,
+    u0: &DVector<f64>,
+) -> DVector<f64> {
     let nq = d.m.nrows();
     let minv = d.m.clone().try_inverse().unwrap();
     let nh = sqrtm(n);
@@ -100,6 +105,8 @@ pub fn eq4_literal(d: &Dyn, xdd_ref: &DVector<f64>) -> DVector<f64> {
 pub fn task_accel(model: &Model, q: &[f64], qd: &[f64], u: &[f64]) -> DVector<f64> {
     let d = dynamics(model, q, qd);
     let mut data = model.data();
-    let qdd = osrl_dynamics::forward_dynamics(model, &mut data, q, qd, u).unwrap().clone();
+    let qdd = osrl_dynamics::forward_dynamics(model, &mut data, q, qd, u)
+        .unwrap()
+        .clone();
     &d.j * qdd + &d.jdqd
 }
