@@ -2,6 +2,7 @@
 //! (25 epochs), over several seeds; prints one JSON object per test.
 //!
 //! `cargo run -p lwpr --release --example cross -- [--seeds N] [--only 2|21]`
+//! (`LWPR_PRUNE=wider` in the environment selects the C library's prune rule for the 21-D test).
 
 #[path = "../tests/common/mod.rs"]
 mod common;

@@ -95,6 +95,14 @@ pub fn cross_config() -> LwprConfig {
     }
 }
 
+/// `LWPR_PRUNE=wider` selects the C library's prune rule (for the benchmark example).
+pub fn prune_rule() -> lwpr::PruneRule {
+    match std::env::var("LWPR_PRUNE").as_deref() {
+        Ok("wider") => lwpr::PruneRule::Wider,
+        _ => lwpr::PruneRule::Narrower,
+    }
+}
+
 /// The 21-D test's model config (issue 4).
 pub fn cross21_config() -> LwprConfig {
     LwprConfig {
@@ -105,6 +113,7 @@ pub fn cross21_config() -> LwprConfig {
         meta: true,
         meta_rate: 250.0,
         w_prune: 0.7,
+        prune_rule: prune_rule(),
         ..Default::default()
     }
 }
