@@ -17,6 +17,7 @@
 
 mod contour;
 mod render;
+mod series;
 
 #[allow(unused_imports)]
 pub use contour::{contour_lines, contour_segments, viridis};

@@ -1,5 +1,6 @@
 //! Drawing a [`Figure`] with plotters onto SVG and PNG backends.
 
+use super::series::{draw_lines, draw_series};
 use super::{contour_lines, viridis, Figure, Legend, Panel, Rgb, Series, Style, PALETTE};
 use anyhow::{anyhow, Result};
 use plotters::coord::Shift;
@@ -13,7 +14,7 @@ const X_AREA: u32 = 48;
 const Y_AREA: u32 = 70;
 const CAPTION: u32 = 32;
 
-fn err<E: std::fmt::Debug>(e: E) -> anyhow::Error {
+pub(super) fn err<E: std::fmt::Debug>(e: E) -> anyhow::Error {
     anyhow!("{e:?}")
 }
 
@@ -250,112 +251,6 @@ fn draw_panel<DB: DrawingBackend>(p: &Panel, cell: &DrawingArea<DB, Shift>) -> R
             .label_font((FONT, 14))
             .draw()
             .map_err(err)?;
-    }
-    Ok(())
-}
-
-type Chart<'a, DB> = ChartContext<
-    'a,
-    DB,
-    Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
->;
-
-fn draw_series<'a, DB: DrawingBackend + 'a>(
-    chart: &mut Chart<'a, DB>,
-    s: &Series,
-    color: RGBColor,
-    t: impl Fn((f64, f64)) -> Option<(f64, f64)>,
-) -> Result<()> {
-    let w = s.width.max(1);
-    if let Some(errs) = &s.errors {
-        let bars = s
-            .points
-            .iter()
-            .zip(errs)
-            .filter_map(|(&(x, y), &(lo, hi))| {
-                let ((xt, yt), (_, lt), (_, ht)) = (t((x, y))?, t((x, lo))?, t((x, hi))?);
-                Some(ErrorBar::new_vertical(
-                    xt,
-                    lt,
-                    yt,
-                    ht,
-                    color.stroke_width(w),
-                    8,
-                ))
-            });
-        chart.draw_series(bars).map_err(err)?;
-    }
-    let mut label = s.label.as_deref();
-    if matches!(s.style, Style::Line | Style::Dashed | Style::LineMarkers) {
-        // Split the polyline at points that cannot be shown.
-        let mut run = Vec::new();
-        for p in s.points.iter().map(|&p| t(p)).chain(std::iter::once(None)) {
-            match p {
-                Some(q) => run.push(q),
-                None if !run.is_empty() => {
-                    draw_lines(chart, s, &run, color, label.take())?;
-                    run.clear();
-                }
-                None => {}
-            }
-        }
-    }
-    if matches!(s.style, Style::Markers | Style::LineMarkers) {
-        let r = if s.style == Style::Markers { w } else { w + 2 };
-        let dots = s
-            .points
-            .iter()
-            .filter_map(|&p| t(p))
-            .map(|q| Circle::new(q, r, color.filled()));
-        let anno = chart.draw_series(dots).map_err(err)?;
-        if let Some(l) = label {
-            anno.label(l)
-                .legend(move |(x, y)| Circle::new((x + 10, y), r, color.filled()));
-        }
-    }
-    Ok(())
-}
-
-fn draw_lines<'a, DB: DrawingBackend + 'a>(
-    chart: &mut Chart<'a, DB>,
-    s: &Series,
-    pts: &[(f64, f64)],
-    color: RGBColor,
-    label: Option<&str>,
-) -> Result<()> {
-    let style = color.stroke_width(s.width.max(1));
-    let anno = if s.style == Style::Dashed {
-        let dash = 4 + 2 * s.width;
-        chart
-            .draw_series(DashedLineSeries::new(
-                pts.to_vec(),
-                dash,
-                dash * 2 / 3,
-                style,
-            ))
-            .map_err(err)?
-    } else {
-        chart
-            .draw_series(LineSeries::new(pts.to_vec(), style))
-            .map_err(err)?
-    };
-    if let Some(l) = label {
-        let dashed = s.style == Style::Dashed;
-        // Very light lines (e.g. white contours over a heat map) get a grey legend glyph.
-        let light = color.0 as u32 + color.1 as u32 + color.2 as u32 > 600;
-        let glyph = if light {
-            RGBColor(150, 150, 150).stroke_width(s.width.max(1))
-        } else {
-            style
-        };
-        anno.label(l).legend(move |(x, y)| {
-            let dash = |a: i32, b: i32| PathElement::new(vec![(a, 0), (b, 0)], glyph);
-            if dashed {
-                EmptyElement::at((x, y)) + dash(0, 6) + dash(10, 16) + dash(20, 24)
-            } else {
-                EmptyElement::at((x, y)) + dash(0, 8) + dash(8, 16) + dash(16, 24)
-            }
-        });
     }
     Ok(())
 }
