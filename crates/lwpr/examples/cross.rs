@@ -2,7 +2,8 @@
 //! (25 epochs), over several seeds; prints one JSON object per test.
 //!
 //! `cargo run -p lwpr --release --example cross -- [--seeds N] [--only 2|21]`
-//! (`LWPR_PRUNE=wider` in the environment selects the C library's prune rule for the 21-D test).
+//! (`LWPR_PRUNE=narrower` in the environment selects `shared/LWPR.md`'s prune rule for the 21-D
+//! test; the default is the reference C library's, see `lwpr::PruneRule`).
 
 #[path = "../tests/common/mod.rs"]
 mod common;

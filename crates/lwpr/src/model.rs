@@ -266,12 +266,14 @@ fn update_sub(
         return (w_max, true, false);
     }
     if i2 < usize::MAX && p.kernel(q2).0 > p.cfg.w_prune {
-        // LWPR.md: remove the narrower of the two (larger trace of D); the C library v1.2
-        // removes the wider one (`PruneRule::Wider`).
-        let narrower_is_1 = sub.trace_d(p, i1) > sub.trace_d(p, i2);
-        let k = match (p.cfg.prune_rule, narrower_is_1) {
-            (PruneRule::Narrower, true) | (PruneRule::Wider, false) => i1,
-            _ => i2,
+        // The C library v1.2 removes the wider of the two (smaller trace of D; on a tie the
+        // second); LWPR.md and the library's Matlab code the narrower (on a tie the first).
+        let (t1, t2) = (sub.trace_d(p, i1), sub.trace_d(p, i2));
+        let k = match p.cfg.prune_rule {
+            PruneRule::Wider if t1 < t2 => i1,
+            PruneRule::Wider => i2,
+            PruneRule::Narrower if t2 > t1 => i2,
+            PruneRule::Narrower => i1,
         };
         events.push(RfEvent::Pruned {
             sub: s,

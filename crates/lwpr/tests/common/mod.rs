@@ -95,11 +95,12 @@ pub fn cross_config() -> LwprConfig {
     }
 }
 
-/// `LWPR_PRUNE=wider` selects the C library's prune rule (for the benchmark example).
+/// `LWPR_PRUNE=narrower` selects `shared/LWPR.md`'s prune rule (for the benchmark example);
+/// the default is the reference C library's (remove the wider RF).
 pub fn prune_rule() -> lwpr::PruneRule {
     match std::env::var("LWPR_PRUNE").as_deref() {
-        Ok("wider") => lwpr::PruneRule::Wider,
-        _ => lwpr::PruneRule::Narrower,
+        Ok("narrower") => lwpr::PruneRule::Narrower,
+        _ => lwpr::PruneRule::Wider,
     }
 }
 
