@@ -4,6 +4,7 @@
 //! object on its last stdout line; errors go to stderr as one line and exit non-zero.
 
 mod cmd;
+mod config;
 mod plot;
 mod util;
 
@@ -26,6 +27,9 @@ enum Command {
     Dynamics(cmd::dynamics::Args),
     /// Fig. 1 experiment: adaptive vs fixed reward transformation of RWR on a 1-D toy problem.
     Toy(cmd::toy::Args),
+    /// Analytical operational space control (eq. 4 / eq. 7) on the simulated robot along a
+    /// task-space trajectory: tracking metrics, CSV and path plot.
+    Simulate(cmd::simulate::Args),
 }
 
 fn main() {
@@ -35,6 +39,7 @@ fn main() {
         Command::Robot(a) => cmd::robot::run(a),
         Command::Dynamics(a) => cmd::dynamics::run(a),
         Command::Toy(a) => cmd::toy::run(a),
+        Command::Simulate(a) => cmd::simulate::run(a),
     };
     if let Err(e) = result {
         // One line: the whole cause chain.

@@ -4,3 +4,4 @@ pub mod dynamics;
 pub mod robot;
 pub mod lwpr;
 pub mod toy;
+pub mod simulate;
