@@ -167,6 +167,8 @@ fn update_sub(
             &kern[i * ml..(i + 1) * ml],
             &ws.xk,
             &mut ws.met.dx,
+            // An RF at q ≥ max(qb, q2) is neither updated nor among the two most active.
+            qb.max(q2),
         );
         if q < q2 {
             if q < q1 {

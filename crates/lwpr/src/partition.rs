@@ -181,7 +181,14 @@ impl Lwpr {
         out.clear();
         for (i, rf) in s.rfs.iter().enumerate() {
             let c = &s.centers[i * nk..(i + 1) * nk];
-            let q = quad(diag, c, &kern[i * ml..(i + 1) * ml], &ws.xk, &mut ws.met.dx);
+            let q = quad(
+                diag,
+                c,
+                &kern[i * ml..(i + 1) * ml],
+                &ws.xk,
+                &mut ws.met.dx,
+                qb,
+            );
             if q < qb {
                 let w = p.kernel(q).0;
                 if w > cutoff {

@@ -121,7 +121,7 @@ impl Lwpr {
                 }
                 let c = &sub.centers[i * nk..(i + 1) * nk];
                 let md = &kern[i * ml..(i + 1) * ml];
-                let q = quad(diag, c, md, &ws.xk, &mut ws.met.dx);
+                let q = quad(diag, c, md, &ws.xk, &mut ws.met.dx, qb);
                 if q >= qb {
                     continue;
                 }

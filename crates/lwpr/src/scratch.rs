@@ -83,27 +83,99 @@ impl Scratch {
 }
 
 /// `q = (x − c)ᵀ D (x − c)`: from the diagonal of `D`, or as `‖M (x − c)‖²` with the
-/// upper-triangular `M` (row-major); `dx` receives `x − c`.
+/// upper-triangular `M` (row-major); `dx` is scratch of length `x.len()`.
+///
+/// The sum runs over non-negative terms, so its partial values never decrease (also in
+/// floating point): once a partial sum reaches `bound`, the RF cannot matter to the caller and
+/// that partial sum (`≥ bound`) is returned early. Below `bound` the result is the full sum,
+/// bit for bit the same as without a bound (same terms, same order). Pass `f64::INFINITY` for
+/// the exact value.
 #[inline]
-pub(crate) fn quad(diag: bool, c: &[f64], md: &[f64], x: &[f64], dx: &mut [f64]) -> f64 {
+pub(crate) fn quad(
+    diag: bool,
+    c: &[f64],
+    md: &[f64],
+    x: &[f64],
+    dx: &mut [f64],
+    bound: f64,
+) -> f64 {
     if diag {
-        let mut q = 0.0;
-        for i in 0..x.len() {
-            let d = x[i] - c[i];
-            q += md[i] * d * d;
-        }
-        q
+        quad_diag(c, md, x, bound)
     } else {
-        let nk = x.len();
-        for i in 0..nk {
-            dx[i] = x[i] - c[i];
+        match x.len() {
+            1 => quad_full_n::<1>(c, md, x, bound),
+            2 => quad_full_n::<2>(c, md, x, bound),
+            3 => quad_full_n::<3>(c, md, x, bound),
+            4 => quad_full_n::<4>(c, md, x, bound),
+            _ => quad_full(c, md, x, dx, bound),
         }
-        let mut q = 0.0;
-        for n in 0..nk {
-            let row = &md[n * nk + n..(n + 1) * nk];
-            let v: f64 = row.iter().zip(&dx[n..]).map(|(a, b)| a * b).sum();
-            q += v * v;
-        }
-        q
     }
+}
+
+/// Diagonal metric: `Σ_i D_i (x_i − c_i)²`, checking the bound every 8 terms.
+#[inline]
+fn quad_diag(c: &[f64], d: &[f64], x: &[f64], bound: f64) -> f64 {
+    let n = x.len();
+    let (c, d) = (&c[..n], &d[..n]);
+    let mut q = 0.0;
+    let mut i = 0;
+    while i + 8 <= n {
+        for k in i..i + 8 {
+            let t = x[k] - c[k];
+            q += d[k] * t * t;
+        }
+        if q >= bound {
+            return q;
+        }
+        i += 8;
+    }
+    for k in i..n {
+        let t = x[k] - c[k];
+        q += d[k] * t * t;
+    }
+    q
+}
+
+/// Full metric, `N` known at compile time (small input spaces).
+#[inline]
+fn quad_full_n<const N: usize>(c: &[f64], m: &[f64], x: &[f64], bound: f64) -> f64 {
+    let (c, m, x) = (&c[..N], &m[..N * N], &x[..N]);
+    let mut dx = [0.0; N];
+    for i in 0..N {
+        dx[i] = x[i] - c[i];
+    }
+    let mut q = 0.0;
+    for n in 0..N {
+        let mut v = 0.0;
+        for i in n..N {
+            v += m[n * N + i] * dx[i];
+        }
+        q += v * v;
+        if q >= bound {
+            return q;
+        }
+    }
+    q
+}
+
+/// Full metric, any size: `Σ_n (Σ_{i≥n} M_ni dx_i)²`, checking the bound after each row.
+#[inline]
+fn quad_full(c: &[f64], m: &[f64], x: &[f64], dx: &mut [f64], bound: f64) -> f64 {
+    let nk = x.len();
+    let (c, m, dx) = (&c[..nk], &m[..nk * nk], &mut dx[..nk]);
+    for i in 0..nk {
+        dx[i] = x[i] - c[i];
+    }
+    let mut q = 0.0;
+    for (n, row) in m.chunks_exact(nk).enumerate() {
+        let mut v = 0.0;
+        for (a, b) in row[n..].iter().zip(&dx[n..]) {
+            v += a * b;
+        }
+        q += v * v;
+        if q >= bound {
+            return q;
+        }
+    }
+    q
 }
