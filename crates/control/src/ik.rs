@@ -65,12 +65,11 @@ pub fn solve_ik(
             .for_each(|(i, v)| *v = v.clamp(lo[i], hi[i]))
     };
     clamp(q);
-    let mut err = f64::INFINITY;
     for _ in 0..opts.max_iter {
         jacobian(model, data, q)?;
         let j = DMatrix::from_fn(m, n, |r, c| data.jac[(axes[r], c)]);
         let e = DVector::from_fn(m, |r, _| target[axes[r]] - data.ee_pos[axes[r]]);
-        err = e.norm();
+        let err = e.norm();
         let jjt = &j * j.transpose() + DMatrix::identity(m, m) * opts.damping.powi(2);
         let Some(inv) = jjt.try_inverse() else {
             return Err(ControlError::Singular("IK: J Jᵀ + λ²I is singular".into()));
@@ -92,7 +91,6 @@ pub fn solve_ik(
         }
     }
     jacobian(model, data, q)?;
-    let _ = err;
     let e: f64 = axes
         .iter()
         .map(|&a| (target[a] - data.ee_pos[a]).powi(2))
