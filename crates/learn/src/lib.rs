@@ -1,1 +1,42 @@
-//! placeholder: see the crate's issue
+//! The learned operational space controller of Peters & Schaal (2007), section IV: an LWPR
+//! forward model `ẍ = f(q, q̇, u)` partitions the state space `(q, q̇)`; each of its receptive
+//! fields carries a local controller `u^i = [ẍ_refᵀ, q̇ᵀ, 1] β^i` (eq. 31) learned by
+//! reward-weighted regression on hindsight samples with the cost `‖u − u0‖²`; the command is the
+//! activation-weighted blend (eq. 34); the nominal `u0` uses an LWPR-learned gravity model.
+//!
+//! The learner sees the robot only through [`osrl_dynamics::Robot`] and its measurements: its
+//! types hold no robot model. Only the evaluation ([`eval`]) reads the simulator's model, to
+//! compute the analytical optimum it compares against.
+//!
+//! The boundary is kept by the compiler: the training driver is generic over
+//! [`osrl_dynamics::Robot`], which offers measurements and commands but no model, so code that
+//! only has a `Robot` cannot read the dynamics:
+//!
+//! ```compile_fail
+//! fn peek<R: osrl_dynamics::Robot>(robot: &R) -> f64 {
+//!     robot.model().total_mass() // error: `Robot` has no `model`
+//! }
+//! ```
+//!
+//! Status (issue 6, in progress): babbling, the forward-model partition, local RWR controllers,
+//! the blend with extrapolation and `u0` fallback, on-policy learning with exploration, and the
+//! evaluation against `u*` work; on `planar3` the figure-8 is tracked to about 1 mm after
+//! 10 simulated minutes, but the command is not yet optimal (command nMSE ≈ 0.9 against `u*`).
+//! Save/load and the `osrl train`/`osrl eval` commands are not built yet.
+
+mod config;
+mod error;
+pub mod eval;
+mod forward;
+mod gravity;
+pub mod io;
+mod learner;
+mod local;
+pub mod train;
+
+pub use config::{CostKind, LearnerConfig, NominalConfig};
+pub use error::{LearnError, Result};
+pub use forward::ForwardModel;
+pub use gravity::GravityModel;
+pub use learner::{CommandSource, Learner, LearnerStats};
+pub use local::LocalSummary;

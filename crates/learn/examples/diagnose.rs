@@ -1,0 +1,135 @@
+//! Diagnostics of a learner after babbling: ĝ vs g, and the learned command vs u* along the
+//! analytical controller's figure-8 run (off-policy), with the task acceleration it would give.
+//! `cargo run -p osrl-learn --release --example diagnose -- [planar3|sarcos7] [babble minutes]`
+
+use osrl_control::{check_reachable, run_closed_loop, IkOptions, Osc, OscConfig, TrajectoryConfig};
+use osrl_dynamics::{robots, Robot, SimConfig, SimRobot};
+use osrl_learn::train::{train, BabbleConfig, TrainConfig};
+use osrl_learn::{Learner, LearnerConfig};
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let args: Vec<String> = std::env::args().collect();
+    let robot = args.get(1).map_or("planar3", |s| s.as_str());
+    let minutes: f64 = args.get(2).map_or(Ok(2.0), |s| s.parse())?;
+    let model = robots::by_name(robot)?;
+    let (n, m) = (model.nq(), model.task_dim());
+    let traj = TrajectoryConfig::default().build(&model)?;
+    let reach = check_reachable(&model, &traj, &IkOptions::default())?;
+    let spec = model.spec();
+    let mut sim = SimRobot::new(model.clone(), SimConfig::default())?;
+    sim.reset(&reach.q_start, &vec![0.0; n])?;
+    let mut lcfg = LearnerConfig::for_robot(&spec.kp, &spec.kd, &spec.q_rest);
+    lcfg.position_features = std::env::var("POS").is_ok();
+    lcfg.residual = std::env::var("NORES").is_err();
+    lcfg.reward_weighting = std::env::var("NORW").is_err();
+    if let Ok(d) = std::env::var("INITD") {
+        lcfg.forward.init_d = lwpr::MetricInit::Scalar(d.parse()?);
+    }
+    if let Ok(v) = std::env::var("VS") {
+        lcfg.velocity_scale = v.parse()?;
+    }
+    let mut learner = Learner::new(n, m, 0.002, lcfg)?;
+    let cfg = TrainConfig {
+        minutes,
+        babble: BabbleConfig {
+            minutes,
+            ..BabbleConfig::default()
+        },
+        eval_every_minutes: 0.0,
+        ..TrainConfig::default()
+    };
+    let axes = model.task_axes().to_vec();
+    train(
+        &mut sim,
+        &mut learner,
+        &traj,
+        &axes,
+        &cfg,
+        &mut |_| Ok(Default::default()),
+        &mut |_| {},
+    )?;
+    // The analytical run gives the states.
+    let mut osc = Osc::new(model.clone(), OscConfig::default())?;
+    let mut sim2 = SimRobot::new(model.clone(), SimConfig::default())?;
+    sim2.reset(&reach.q_start, &vec![0.0; n])?;
+    let run = run_closed_loop(&mut sim2, &mut osc, &traj, &axes, 8.0)?;
+    let s = &run.series;
+    let mut data = model.data();
+    let (mut g_err, mut g_var, mut du2, mut us2, mut acc_err, mut fb) =
+        (0.0, 0.0, 0.0, 0.0, 0.0, 0);
+    let (mut u, mut u0, mut us, mut g_hat) =
+        (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    let mut xdd_ref = vec![0.0; m];
+    let k_all = s.len();
+    let mut sim3 = SimRobot::new(model.clone(), SimConfig::default())?;
+    sim3.reset(&reach.q_start, &vec![0.0; n])?;
+    let mut count = 0;
+    for k in (0..k_all).step_by(10) {
+        // Reconstruct the state by replaying: cheaper to re-run the analytical controller.
+        let _ = k;
+        let meas = sim3.measurement().clone();
+        let target = traj.sample(meas.t);
+        osrl_control::reference_acceleration(
+            &Default::default(),
+            &target,
+            &axes,
+            meas.x.as_slice(),
+            meas.xd.as_slice(),
+            &mut xdd_ref,
+        );
+        let (q, qd) = (meas.q.as_slice(), meas.qd.as_slice());
+        let src = learner.command::<rand_chacha::ChaCha8Rng>(q, qd, &xdd_ref, None, &mut u)?;
+        fb += (src == osrl_learn::CommandSource::Fallback) as usize;
+        osc.nominal(q, qd, &mut u0)?;
+        osc.solve(q, qd, &xdd_ref, &u0, &mut us)?;
+        let g = osrl_dynamics::gravity(&model, &mut data, q)?.clone();
+        learner.nominal(q, qd, &mut g_hat)?;
+        for i in 0..n {
+            let gh = g_hat[i] + spec.kd[i] * qd[i] + spec.kp[i] * (q[i] - spec.q_rest[i]);
+            g_err += (gh - g[i]).powi(2);
+            g_var += g[i].powi(2);
+            du2 += (u[i] - us[i]).powi(2);
+            us2 += (us[i] - u0[i]).powi(2);
+        }
+        let qdd = osrl_dynamics::forward_dynamics(&model, &mut data, q, qd, &u)?.clone();
+        osrl_dynamics::compute_all(&model, &mut data, q, qd)?;
+        let xdd = &data.jac * qdd + data.jdot_qd;
+        acc_err += axes
+            .iter()
+            .enumerate()
+            .map(|(j, &a)| (xdd[a] - xdd_ref[j]).powi(2))
+            .sum::<f64>();
+        count += 1;
+        // Advance the analytical run 10 steps.
+        for _ in 0..10 {
+            let mm = sim3.measurement().clone();
+            let mut ua = vec![0.0; n];
+            osrl_control::TaskController::command(&mut osc, &mm, &traj.sample(mm.t), &mut ua)?;
+            osrl_dynamics::Robot::step(&mut sim3, &ua)?;
+        }
+    }
+    let c = count as f64;
+    println!(
+        "RFs {} (gravity {}), trained {}",
+        learner.n_local_models(),
+        learner.n_gravity_rfs(),
+        learner.n_trained()
+    );
+    println!(
+        "gravity: rms error {:.3} N·m vs rms g {:.3}",
+        (g_err / c / n as f64).sqrt(),
+        (g_var / c / n as f64).sqrt()
+    );
+    println!(
+        "command: rms ‖u − u*‖ {:.3} N·m; rms ‖u* − u0‖ {:.3}; fallback {}/{}",
+        (du2 / c).sqrt(),
+        (us2 / c).sqrt(),
+        fb,
+        count
+    );
+    println!(
+        "task acceleration error rms {:.3} m/s²",
+        (acc_err / c).sqrt()
+    );
+    Ok(())
+}

@@ -1,0 +1,123 @@
+//! Trains the learned controller on the figure-8 and prints the learning curve (Fig. 2b/3b, E3).
+//! `cargo run -p osrl-learn --release --example learn_figure8 -- [planar3|sarcos7] [minutes] [seed]`
+
+use osrl_control::{check_reachable, IkOptions, TrajectoryConfig};
+use osrl_dynamics::{robots, SimConfig, SimRobot};
+use osrl_learn::eval::Evaluator;
+use osrl_learn::train::{train, TrainConfig};
+use osrl_learn::{Learner, LearnerConfig};
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let args: Vec<String> = std::env::args().collect();
+    let robot = args.get(1).map_or("planar3", |s| s.as_str());
+    let minutes: f64 = args.get(2).map_or(Ok(10.0), |s| s.parse())?;
+    let seed: u64 = args.get(3).map_or(Ok(0), |s| s.parse())?;
+    let model = robots::by_name(robot)?;
+    let traj = TrajectoryConfig::default().build(&model)?;
+    let reach = check_reachable(&model, &traj, &IkOptions::default())?;
+    let spec = model.spec();
+    let mut sim = SimRobot::new(
+        model.clone(),
+        SimConfig {
+            seed,
+            ..SimConfig::default()
+        },
+    )?;
+    sim.reset(&reach.q_start, &vec![0.0; model.nq()])?;
+    let mut lcfg = LearnerConfig::for_robot(&spec.kp, &spec.kd, &spec.q_rest);
+    if let Ok(c) = std::env::var("COST") {
+        lcfg.cost = if c == "null" {
+            osrl_learn::CostKind::NullSpace
+        } else {
+            osrl_learn::CostKind::Full
+        };
+    }
+    lcfg.position_features = std::env::var("NOPOS").is_err();
+    lcfg.residual = std::env::var("NORES").is_err();
+    lcfg.reward_weighting = std::env::var("NORW").is_err();
+    if let Ok(d) = std::env::var("INITD") {
+        lcfg.forward.init_d = lwpr::MetricInit::Scalar(d.parse()?);
+    }
+    if let Ok(v) = std::env::var("VS") {
+        lcfg.velocity_scale = v.parse()?;
+    }
+    if let Ok(v) = std::env::var("CAP") {
+        lcfg.exploration_cap = v.parse()?;
+    }
+    let mut learner = Learner::new(model.nq(), model.task_dim(), 0.002, lcfg)?;
+    let babble: f64 = std::env::var("BABBLE").map_or(Ok(4.0), |s| s.parse())?;
+    let cfg = TrainConfig {
+        minutes,
+        seed,
+        eval_every_minutes: 1.0,
+        learn_on_policy: std::env::var("NOLEARN").is_err(),
+        explore: std::env::var("NOEXPLORE").is_err(),
+        babble: osrl_learn::train::BabbleConfig {
+            minutes: babble,
+            ..Default::default()
+        },
+        ..TrainConfig::default()
+    };
+    let mut ev = Evaluator::new(
+        model.clone(),
+        SimConfig::default(),
+        traj.clone(),
+        reach.q_start.clone(),
+        cfg.gains,
+        2,
+    )?;
+    let axes = model.task_axes().to_vec();
+    let summary = train(
+        &mut sim,
+        &mut learner,
+        &traj,
+        &axes,
+        &cfg,
+        &mut |l| ev.evaluate(l),
+        &mut |p| {
+            if let Some(e) = &p.eval {
+                println!(
+                "{:6.2} min {:10} rfs {:4} trained {:4} | track {:8.2} mm (max {:8.2}) nmse {:7.4} cost {:6.3} fallback {:5.3} | episodes {} aborted {}",
+                p.sim_minutes, p.phase, p.n_local_models, p.n_trained, e.tracking_rms_mm, e.tracking_max_mm, e.command_nmse, e.command_cost_ratio, e.fallback_share, p.episodes, p.aborted_episodes
+            );
+            }
+        },
+    )?;
+    let mut s = learner.local_summaries();
+    let q = |v: &mut Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        if v.is_empty() {
+            vec![]
+        } else {
+            vec![
+                v[0],
+                v[v.len() / 4],
+                v[v.len() / 2],
+                v[3 * v.len() / 4],
+                v[v.len() - 1],
+            ]
+        }
+    };
+    println!(
+        "ess quantiles {:?}",
+        q(&mut s.iter().map(|l| l.ess).collect())
+    );
+    println!(
+        "sigma quantiles {:?}",
+        q(&mut s.iter().map(|l| l.sigma).collect())
+    );
+    println!(
+        "tau quantiles {:?}",
+        q(&mut s.iter().map(|l| l.tau).collect())
+    );
+    s.clear();
+    println!(
+        "{}",
+        serde_json::to_string(&serde_json::json!({
+            "wall_seconds": summary.wall_seconds, "realtime_factor": summary.realtime_factor,
+            "n_local_models": summary.n_local_models, "stats": summary.stats, "gravity_rfs": learner.n_gravity_rfs(),
+            "max_command_step": summary.max_command_step,
+        }))?
+    );
+    Ok(())
+}

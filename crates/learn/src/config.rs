@@ -1,0 +1,188 @@
+//! Settings of the learned controller (the learner) — every field with its unit and default.
+
+use crate::error::{LearnError, Result};
+use lwpr::{LwprConfig, MetricInit};
+use rwr::RwrConfig;
+use serde::{Deserialize, Serialize};
+
+/// The cost whose transformed value weights the hindsight samples of the local controllers.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CostKind {
+    /// The paper's `r = ‖u − u0‖²` (`N = I`).
+    #[default]
+    Full,
+    /// Only its avoidable part `r_null = ‖(I − Â⁺Â)(u − u0)‖²`, with `Â = ∂ẍ/∂u` from the
+    /// forward model's local regression (DESIGN.md §3): the same optimum, a better-scaled `τ`.
+    NullSpace,
+}
+
+/// The nominal behaviour `u0 = ĝ(q) − K_Dq q̇ − K_Pq (q − q_rest)` (eq. 6 plus learned gravity).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct NominalConfig {
+    /// Joint stiffness `K_Pq` (N·m/rad), one per joint. Default: the robot's PD gains.
+    pub kp: Vec<f64>,
+    /// Joint damping `K_Dq` (N·m·s/rad). Default: the robot's PD gains.
+    pub kd: Vec<f64>,
+    /// Rest posture (rad). Default: the robot's rest posture.
+    pub q_rest: Vec<f64>,
+}
+
+/// All settings of the learner (models and local controllers).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct LearnerConfig {
+    /// Nominal behaviour; filled from the robot's data sheet by [`LearnerConfig::for_robot`].
+    pub nominal: NominalConfig,
+    /// Gravity model `ĝ`: LWPR on `[q, q̇, q̈] → u`, kernel on `q` (the input and kernel
+    /// dimensions are set by the learner). Default: width 0.5 rad-ish (`init_d` 4), `w_gen` 0.2.
+    pub gravity: LwprConfig,
+    /// Forward model: LWPR on `[q, q̇, u] → ẍ`, kernel on `(q, q̇)` (eq. 33), regression on
+    /// `(q̇, u)` (eq. 32), receptive fields shared by the task dimensions (set by the learner).
+    pub forward: LwprConfig,
+    /// Reward-weighted regression of each local controller (its own `τ_i`, `σ_i`).
+    pub rwr: RwrConfig,
+    /// Cost of the reward weighting. Default `full` (the paper's).
+    pub cost: CostKind,
+    /// Local controllers learn the deviation from the nominal behaviour, `u = u0(q, q̇) +
+    /// [ẍ_refᵀ, q̇ᵀ, 1] β^i`, instead of `u` itself (eq. 31): the learned gravity and the PD pull,
+    /// which vary inside a receptive field, are then exact rather than averaged. Default true.
+    pub residual: bool,
+    /// Add the offset from the receptive field's centre, `q − c_i`, to the features of eq. 31, so
+    /// each local controller is linear in `q` too. Default false (the paper's features).
+    pub position_features: bool,
+    /// Weight the hindsight samples by the transformed reward (`true`, RWR) or not (`false`:
+    /// plain activation-weighted regression, the supervised-inverse ablation of E6). Default true.
+    pub reward_weighting: bool,
+    /// A receptive field learns from (and joins the blend at) activations above this. Default 0.05.
+    pub activation_cutoff: f64,
+    /// A local controller joins the blend once its effective sample size reaches this. Default 50.
+    pub min_ess: f64,
+    /// M-step of a local controller after this many new samples. Default 25.
+    pub update_every: usize,
+    /// Scale of the exploration noise relative to each local controller's `σ_i`. Default 1.
+    pub exploration_scale: f64,
+    /// Cap on the exploration noise of joint `j`, as a share of the standard deviation of its
+    /// torques during the warm-up (so light distal joints are not shaken by the noise that
+    /// suits heavy proximal ones). Default 0.05.
+    pub exploration_cap: f64,
+    /// Measurements with `|ẍ|` above this (m/s²) or `|q̇|` above 100·this are rejected as absurd.
+    /// Default 1000.
+    pub max_abs_acceleration: f64,
+    /// Transitions collected before the models are created; their standard deviations set the
+    /// scales of torques and accelerations inside the models. Default 1000.
+    pub warmup_samples: usize,
+    /// Scale of joint velocities in the kernels (rad/s): kernel widths in `q̇` are this many
+    /// times those in `q`. Default 2.
+    pub velocity_scale: f64,
+}
+
+impl Default for LearnerConfig {
+    fn default() -> Self {
+        Self {
+            nominal: NominalConfig::default(),
+            gravity: LwprConfig {
+                init_d: MetricInit::Scalar(4.0),
+                w_gen: 0.2,
+                init_alpha: 10.0,
+                ..LwprConfig::default()
+            },
+            forward: LwprConfig {
+                init_d: MetricInit::Scalar(64.0),
+                w_gen: 0.2,
+                init_alpha: 10.0,
+                ..LwprConfig::default()
+            },
+            rwr: RwrConfig {
+                tau_init: 0.1,
+                sigma_init: 0.5,
+                sigma_min: 0.05,
+                forgetting: 0.99995,
+                ridge: 1e-4,
+                min_ess: 10.0,
+                ..RwrConfig::default()
+            },
+            cost: CostKind::Full,
+            residual: true,
+            position_features: true,
+            reward_weighting: true,
+            activation_cutoff: 0.05,
+            min_ess: 50.0,
+            update_every: 25,
+            exploration_scale: 1.0,
+            exploration_cap: 0.05,
+            max_abs_acceleration: 1000.0,
+            warmup_samples: 1000,
+            velocity_scale: 10.0,
+        }
+    }
+}
+
+impl LearnerConfig {
+    /// The defaults with the nominal behaviour of a robot's data sheet: its joint PD gains and
+    /// rest posture (no dynamics parameters).
+    pub fn for_robot(kp: &[f64], kd: &[f64], q_rest: &[f64]) -> Self {
+        Self {
+            nominal: NominalConfig {
+                kp: kp.to_vec(),
+                kd: kd.to_vec(),
+                q_rest: q_rest.to_vec(),
+            },
+            ..Self::default()
+        }
+    }
+
+    /// Checks ranges and that the nominal behaviour has `n` joints.
+    pub fn validate(&self, n: usize) -> Result<()> {
+        let bad = |m: String| Err(LearnError::InvalidConfig(m));
+        let nom = &self.nominal;
+        for (what, v) in [
+            ("nominal.kp", &nom.kp),
+            ("nominal.kd", &nom.kd),
+            ("nominal.q_rest", &nom.q_rest),
+        ] {
+            if v.len() != n || v.iter().any(|x| !x.is_finite()) {
+                return bad(format!("{what} needs {n} finite values, got {v:?}"));
+            }
+        }
+        if !(self.activation_cutoff > 0.0 && self.activation_cutoff < 1.0) {
+            return bad(format!(
+                "activation_cutoff {} must be in (0, 1)",
+                self.activation_cutoff
+            ));
+        }
+        if !(self.min_ess >= 1.0 && self.min_ess.is_finite()) {
+            return bad(format!("min_ess {} must be ≥ 1", self.min_ess));
+        }
+        if self.update_every == 0 {
+            return bad("update_every must be ≥ 1".into());
+        }
+        if !(self.exploration_cap >= 0.0 && self.exploration_cap.is_finite()) {
+            return bad(format!(
+                "exploration_cap {} must be finite and ≥ 0",
+                self.exploration_cap
+            ));
+        }
+        if !(self.exploration_scale >= 0.0 && self.exploration_scale.is_finite()) {
+            return bad(format!(
+                "exploration_scale {} must be finite and ≥ 0",
+                self.exploration_scale
+            ));
+        }
+        if self.warmup_samples < 10 {
+            return bad("warmup_samples must be ≥ 10".into());
+        }
+        if !(self.velocity_scale > 0.0 && self.velocity_scale.is_finite()) {
+            return bad(format!(
+                "velocity_scale {} must be > 0",
+                self.velocity_scale
+            ));
+        }
+        if !(self.max_abs_acceleration > 0.0) {
+            return bad("max_abs_acceleration must be > 0".into());
+        }
+        self.rwr.validate()?;
+        Ok(())
+    }
+}

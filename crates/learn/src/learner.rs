@@ -1,0 +1,232 @@
+//! The learner: gravity model, forward model (the partition) and local RWR controllers, updated
+//! from measured transitions only (DESIGN.md §2 — it never sees a robot model).
+
+use crate::config::LearnerConfig;
+use crate::error::{LearnError, Result};
+use crate::forward::ForwardModel;
+use crate::gravity::GravityModel;
+use crate::local::LocalControllers;
+use lwpr::{Activation, RfEvent};
+use osrl_dynamics::Measurement;
+
+/// Counters of what the learner did and refused.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct LearnerStats {
+    /// Transitions learned from.
+    pub samples: u64,
+    /// Measurements rejected (non-finite or absurd).
+    pub rejected: u64,
+    /// Commands computed, and those that fell back to `u0` because no trained controller was active.
+    pub commands: u64,
+    pub fallbacks: u64,
+    /// Commands extrapolated from trained controllers active below the cutoff.
+    pub extrapolations: u64,
+    /// Local M-steps done and those that failed (too few samples).
+    pub m_steps: u64,
+    pub failed_m_steps: u64,
+}
+
+/// Scratch buffers of the learning step and the command (allocated once).
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Scratch {
+    pub acts: Vec<Activation>,
+    pub events: Vec<RfEvent>,
+    pub phi: Vec<f64>,
+    pub u0: Vec<f64>,
+    pub du: Vec<f64>,
+    pub ui: Vec<f64>,
+    pub target: Vec<f64>,
+    pub a_hat: Vec<f64>,
+    pub y: Vec<f64>,
+    pub s: Vec<f64>,
+}
+
+/// The learned operational space controller's state (paper section IV).
+#[derive(Clone, Debug)]
+pub struct Learner {
+    pub(crate) cfg: LearnerConfig,
+    pub(crate) n: usize,
+    pub(crate) m: usize,
+    pub(crate) gravity: Option<GravityModel>,
+    pub(crate) forward: Option<ForwardModel>,
+    pub(crate) locals: LocalControllers,
+    /// Measurements kept until the models exist (the warm-up).
+    pub(crate) warm: Vec<Measurement>,
+    pub(crate) dt: f64,
+    /// Standard deviation of each joint's torque during the warm-up (N·m).
+    pub(crate) torque_scale: Vec<f64>,
+    pub(crate) stats: LearnerStats,
+    pub(crate) ws: Scratch,
+}
+
+impl Learner {
+    /// A learner for a robot with `n` joints and an `m`-dimensional task, controlled every `dt`
+    /// seconds. Fails on an invalid config.
+    pub fn new(n: usize, m: usize, dt: f64, cfg: LearnerConfig) -> Result<Self> {
+        cfg.validate(n)?;
+        if m == 0 || m > n || !(dt > 0.0) {
+            return Err(LearnError::InvalidConfig(format!(
+                "need 0 < m ≤ n and dt > 0 (n = {n}, m = {m}, dt = {dt})"
+            )));
+        }
+        let p = n_features(&cfg, n, m);
+        let ws = Scratch {
+            acts: Vec::with_capacity(4096),
+            events: Vec::with_capacity(16),
+            phi: vec![0.0; p],
+            u0: vec![0.0; n],
+            du: vec![0.0; n],
+            ui: vec![0.0; n],
+            target: vec![0.0; n],
+            a_hat: vec![0.0; m * n],
+            y: vec![0.0; m],
+            s: vec![0.0; m * m],
+        };
+        Ok(Self {
+            warm: Vec::with_capacity(cfg.warmup_samples + 1),
+            cfg,
+            n,
+            m,
+            gravity: None,
+            forward: None,
+            locals: LocalControllers::default(),
+            dt,
+            torque_scale: vec![1.0; n],
+            stats: LearnerStats::default(),
+            ws,
+        })
+    }
+
+    pub fn config(&self) -> &LearnerConfig {
+        &self.cfg
+    }
+    pub fn stats(&self) -> LearnerStats {
+        self.stats
+    }
+    /// Number of joints and task dimensions.
+    pub fn dims(&self) -> (usize, usize) {
+        (self.n, self.m)
+    }
+    /// Number of local controllers (= receptive fields of the forward model).
+    pub fn n_local_models(&self) -> usize {
+        self.locals.len()
+    }
+    /// Summaries of the local controllers (effective sample size, σ, τ).
+    pub fn local_summaries(&self) -> Vec<crate::local::LocalSummary> {
+        self.locals.summaries()
+    }
+    /// Local controllers with enough data to act.
+    pub fn n_trained(&self) -> usize {
+        self.locals.n_trained(self.cfg.min_ess)
+    }
+    /// Receptive fields of the gravity model.
+    pub fn n_gravity_rfs(&self) -> usize {
+        self.gravity.as_ref().map_or(0, |g| g.n_rfs())
+    }
+    /// Whether the warm-up is over and the models exist.
+    pub fn ready(&self) -> bool {
+        self.forward.is_some()
+    }
+
+    /// Checks a measurement: right sizes, finite, and not absurd.
+    pub fn check(&self, meas: &Measurement) -> Result<()> {
+        let (n, m) = (self.n, self.m);
+        if meas.q.len() != n
+            || meas.qd.len() != n
+            || meas.u.len() != n
+            || meas.x.len() != m
+            || meas.xd.len() != m
+            || meas.xdd.len() != m
+        {
+            return Err(LearnError::BadMeasurement(format!(
+                "sizes do not match a robot with {n} joints and {m} task dimensions"
+            )));
+        }
+        let all = meas
+            .q
+            .iter()
+            .chain(meas.qd.iter())
+            .chain(meas.u.iter())
+            .chain(meas.x.iter())
+            .chain(meas.xd.iter())
+            .chain(meas.xdd.iter());
+        if let Some(v) = all.clone().find(|v| !v.is_finite()) {
+            return Err(LearnError::BadMeasurement(format!("non-finite value {v}")));
+        }
+        let lim = self.cfg.max_abs_acceleration;
+        if meas.xdd.amax() > lim || meas.qd.amax() > 0.1 * lim {
+            return Err(LearnError::BadMeasurement(format!(
+                "absurd: |ẍ| = {:.3e} m/s², |q̇| = {:.3e} rad/s",
+                meas.xdd.amax(),
+                meas.qd.amax()
+            )));
+        }
+        Ok(())
+    }
+
+    /// Learns from the transition `prev → cur` (the command `cur.u` was held in between). A
+    /// rejected measurement is counted and changes nothing.
+    pub fn learn(&mut self, prev: &Measurement, cur: &Measurement) -> Result<()> {
+        if let Err(e) = self.check(cur).and_then(|_| self.check(prev)) {
+            self.stats.rejected += 1;
+            return Err(e);
+        }
+        if self.forward.is_none() {
+            if self.warm.is_empty() {
+                self.warm.push(prev.clone());
+            }
+            self.warm.push(cur.clone());
+            if self.warm.len() > self.cfg.warmup_samples {
+                self.init_models()?;
+            }
+            return Ok(());
+        }
+        self.learn_ready(prev, cur)
+    }
+}
+
+/// Length of the feature vector `φ = [ẍᵀ, q̇ᵀ, (q − c)ᵀ?, 1]` of the local controllers.
+pub(crate) fn n_features(cfg: &LearnerConfig, n: usize, m: usize) -> usize {
+    m + n + 1 + if cfg.position_features { n } else { 0 }
+}
+
+#[path = "learner_step.rs"]
+mod step;
+pub use step::CommandSource;
+impl Learner {
+    /// The models from the warm-up data, then the warm-up replayed into them.
+    fn init_models(&mut self) -> Result<()> {
+        let (n, m) = (self.n, self.m);
+        let warm = std::mem::take(&mut self.warm);
+        let std = |f: &dyn Fn(&Measurement) -> f64| {
+            let k = warm.len() as f64;
+            let mean = warm.iter().map(f).sum::<f64>() / k;
+            let var = warm.iter().map(|w| (f(w) - mean).powi(2)).sum::<f64>() / k;
+            var.sqrt().max(1e-3)
+        };
+        let torque: Vec<f64> = (0..n).map(|i| std(&|w: &Measurement| w.u[i])).collect();
+        let acc = (0..m)
+            .map(|k| std(&|w: &Measurement| w.xdd[k]))
+            .fold(0.0, f64::max);
+        let jacc = (1..warm.len())
+            .map(|k| ((&warm[k].qd - &warm[k - 1].qd) / self.dt).amax())
+            .fold(0.0, f64::max)
+            .max(1.0)
+            / 3.0;
+        self.torque_scale = torque.clone();
+        let vs = self.cfg.velocity_scale;
+        self.gravity = Some(GravityModel::new(n, &self.cfg.gravity, vs, jacc, &torque)?);
+        self.forward = Some(ForwardModel::new(
+            n,
+            m,
+            &self.cfg.forward,
+            vs,
+            &torque,
+            acc,
+        )?);
+        for k in 1..warm.len() {
+            self.learn_ready(&warm[k - 1], &warm[k])?;
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,302 @@
+//! One learning step and one command of the [`Learner`](super::Learner).
+
+use super::Learner;
+use crate::config::CostKind;
+use crate::error::{LearnError, Result};
+use lwpr::RfEvent;
+use osrl_dynamics::Measurement;
+use rand::Rng;
+use rand_distr::{Distribution, StandardNormal};
+
+/// What produced a command.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CommandSource {
+    /// The blend of the trained local controllers (eq. 34).
+    Learned,
+    /// No trained controller active above the cutoff: the blend of the nearest ones (any
+    /// activation above 1e-12).
+    Extrapolated,
+    /// No trained controller anywhere near: the nominal `u0`.
+    Fallback,
+}
+
+/// Activation cutoff of the extrapolating blend.
+const EXTRAPOLATION_CUTOFF: f64 = 1e-12;
+
+impl Learner {
+    /// The nominal behaviour `u0 = ĝ(q) − K_Dq q̇ − K_Pq (q − q_rest)` into `u0` (`ĝ = 0` until
+    /// the gravity model has support). Returns whether `ĝ` had support.
+    pub fn nominal(&mut self, q: &[f64], qd: &[f64], u0: &mut [f64]) -> Result<bool> {
+        let known = match self.gravity.as_mut() {
+            Some(g) => g.predict(q, u0)?,
+            None => {
+                u0.fill(0.0);
+                false
+            }
+        };
+        let nom = &self.cfg.nominal;
+        for i in 0..self.n {
+            u0[i] -= nom.kd[i] * qd[i] + nom.kp[i] * (q[i] - nom.q_rest[i]);
+        }
+        Ok(known)
+    }
+
+    /// The learned command (eq. 34) for the reference acceleration `xdd_ref` at `(q, q̇)` into `u`,
+    /// plus Gaussian exploration noise of the blended `σ` when `rng` is given. Falls back to `u0`
+    /// (counted) where no trained local controller is active. Does not allocate.
+    pub fn command<R: Rng + ?Sized>(
+        &mut self,
+        q: &[f64],
+        qd: &[f64],
+        xdd_ref: &[f64],
+        rng: Option<&mut R>,
+        u: &mut [f64],
+    ) -> Result<CommandSource> {
+        let (n, m) = (self.n, self.m);
+        if q.len() != n || qd.len() != n || u.len() != n || xdd_ref.len() != m {
+            return Err(LearnError::Dimension {
+                what: "command arguments",
+                expected: n,
+                got: q.len(),
+            });
+        }
+        self.stats.commands += 1;
+        let cutoff = self.cfg.activation_cutoff;
+        let Some(fwd) = self.forward.as_mut() else {
+            self.stats.fallbacks += 1;
+            let mut u0 = std::mem::take(&mut self.ws.u0);
+            self.nominal(q, qd, &mut u0)?;
+            u.copy_from_slice(&u0);
+            self.ws.u0 = u0;
+            return Ok(CommandSource::Fallback);
+        };
+        // φ = [ẍ_refᵀ, q̇ᵀ, (q − c_i)ᵀ, 1] (eq. 31, with the optional position features).
+        let phi = &mut self.ws.phi;
+        phi[..m].copy_from_slice(xdd_ref);
+        phi[m..m + n].copy_from_slice(qd);
+        let last = phi.len() - 1;
+        phi[last] = 1.0;
+        // Blend the trained controllers active above the cutoff; if there are none, those with
+        // any activation at all (extrapolation from the nearest ones), counted.
+        let mut source = CommandSource::Learned;
+        let (mut sum_w, mut sigma) = (0.0, 0.0);
+        for cut in [cutoff, EXTRAPOLATION_CUTOFF] {
+            fwd.activations(q, qd, cut, &mut self.ws.acts)?;
+            u.fill(0.0);
+            for a in &self.ws.acts {
+                let Some(local) = self.locals.map.get(&a.id) else {
+                    continue;
+                };
+                if local.ess < self.cfg.min_ess {
+                    continue;
+                }
+                if self.cfg.position_features {
+                    for i in 0..n {
+                        phi[m + n + i] = q[i] - local.center[i];
+                    }
+                }
+                local.rwr.mean_into(phi, &mut self.ws.ui)?;
+                for (o, v) in u.iter_mut().zip(&self.ws.ui) {
+                    *o += a.w * v;
+                }
+                sum_w += a.w;
+                sigma += a.w * local.rwr.sigma();
+            }
+            if sum_w > 0.0 {
+                break;
+            }
+            source = CommandSource::Extrapolated;
+        }
+        if sum_w <= 0.0 {
+            self.stats.fallbacks += 1;
+            let mut u0 = std::mem::take(&mut self.ws.u0);
+            self.nominal(q, qd, &mut u0)?;
+            u.copy_from_slice(&u0);
+            self.ws.u0 = u0;
+            return Ok(CommandSource::Fallback);
+        }
+        if source == CommandSource::Extrapolated {
+            self.stats.extrapolations += 1;
+        }
+        let sigma = self.cfg.exploration_scale * sigma / sum_w;
+        for v in u.iter_mut() {
+            *v /= sum_w;
+        }
+        if self.cfg.residual {
+            let mut u0 = std::mem::take(&mut self.ws.u0);
+            self.nominal(q, qd, &mut u0)?;
+            for (v, o) in u.iter_mut().zip(&u0) {
+                *v += o;
+            }
+            self.ws.u0 = u0;
+        }
+        if let Some(rng) = rng {
+            let cap = self.cfg.exploration_cap;
+            for (v, s) in u.iter_mut().zip(&self.torque_scale) {
+                let z: f64 = StandardNormal.sample(rng);
+                *v += sigma.min(cap * s) * z;
+            }
+        }
+        Ok(source)
+    }
+
+    /// Learning from a checked transition once the models exist.
+    pub(crate) fn learn_ready(&mut self, prev: &Measurement, cur: &Measurement) -> Result<()> {
+        let (n, m) = (self.n, self.m);
+        let (q, qd, u) = (cur.q.as_slice(), cur.qd.as_slice(), cur.u.as_slice());
+        self.stats.samples += 1;
+        // Supervised models: gravity (inverse dynamics) and the forward model (the partition).
+        let dt = cur.t - prev.t;
+        if dt > 0.0 {
+            let g = self.gravity.as_mut().expect("models exist");
+            g.learn(prev.q.as_slice(), prev.qd.as_slice(), q, qd, u, dt)?;
+        }
+        let fwd = self.forward.as_mut().expect("models exist");
+        fwd.learn(q, qd, u, cur.xdd.as_slice())?;
+        self.ws.events.clear();
+        fwd.drain_events(&mut self.ws.events);
+        // Follow the partition: new RFs get a controller, pruned ones lose theirs.
+        let mut u0 = std::mem::take(&mut self.ws.u0);
+        self.nominal(q, qd, &mut u0)?;
+        let p = super::n_features(&self.cfg, n, m);
+        let init: &[f64] = if self.cfg.residual {
+            &self.ws.target[..0]
+        } else {
+            u
+        };
+        for k in 0..self.ws.events.len() {
+            match self.ws.events[k] {
+                RfEvent::Added {
+                    id, copied_from, ..
+                } => {
+                    let fwd = self.forward.as_ref().expect("models exist");
+                    let center = fwd.center(id).unwrap_or_else(|| [q, qd].concat());
+                    self.locals.add(
+                        id,
+                        center,
+                        copied_from,
+                        init,
+                        n,
+                        p,
+                        &self.cfg.rwr,
+                        self.cfg.min_ess,
+                    )?;
+                }
+                RfEvent::Pruned { id, .. } => self.locals.remove(id),
+            }
+        }
+        // The cost of the executed command (N = I), full or its avoidable part.
+        for i in 0..n {
+            self.ws.du[i] = u[i] - u0[i];
+            // The regression target: the command itself or its deviation from u0.
+            self.ws.target[i] = if self.cfg.residual {
+                self.ws.du[i]
+            } else {
+                u[i]
+            };
+        }
+        self.ws.u0 = u0;
+        let full: f64 = self.ws.du.iter().map(|v| v * v).sum();
+        let r = match self.cfg.cost {
+            _ if !self.cfg.reward_weighting => 0.0,
+            CostKind::Full => full,
+            CostKind::NullSpace => {
+                let fwd = self.forward.as_mut().expect("models exist");
+                if fwd.input_gain(q, qd, u, &mut self.ws.a_hat)? {
+                    null_space_cost(
+                        &self.ws.a_hat,
+                        &self.ws.du,
+                        m,
+                        &mut self.ws.y,
+                        &mut self.ws.s,
+                    )
+                    .unwrap_or(full)
+                } else {
+                    full
+                }
+            }
+        };
+        // Hindsight sample φ = [ẍ_measured, q̇, (q − c), 1] → u (or u − u0), weighted by each
+        // RF's activation.
+        let phi = &mut self.ws.phi;
+        phi[..m].copy_from_slice(cur.xdd.as_slice());
+        phi[m..m + n].copy_from_slice(qd);
+        let last = phi.len() - 1;
+        phi[last] = 1.0;
+        let fwd = self.forward.as_mut().expect("models exist");
+        fwd.activations(q, qd, self.cfg.activation_cutoff, &mut self.ws.acts)?;
+        for a in &self.ws.acts {
+            let Some(local) = self.locals.map.get_mut(&a.id) else {
+                continue;
+            };
+            if self.cfg.position_features {
+                for i in 0..n {
+                    phi[m + n + i] = q[i] - local.center[i];
+                }
+            }
+            local.rwr.observe(phi, &self.ws.target, r, a.w)?;
+            local.pending += 1;
+            if local.pending >= self.cfg.update_every {
+                local.pending = 0;
+                match local.rwr.update() {
+                    Ok(info) => {
+                        local.ess = info.ess;
+                        local.updates += 1;
+                        self.stats.m_steps += 1;
+                    }
+                    Err(_) => self.stats.failed_m_steps += 1,
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// `r_null = ‖du‖² − duᵀ Âᵀ (Â Âᵀ)⁻¹ Â du`, the part of `‖du‖²` in the null space of `Â` (m×n,
+/// row-major). `None` if `Â Âᵀ` is not positive definite.
+pub(crate) fn null_space_cost(
+    a: &[f64],
+    du: &[f64],
+    m: usize,
+    y: &mut [f64],
+    s: &mut [f64],
+) -> Option<f64> {
+    let n = du.len();
+    for k in 0..m {
+        y[k] = (0..n).map(|j| a[k * n + j] * du[j]).sum();
+        for l in 0..m {
+            s[k * m + l] = (0..n).map(|j| a[k * n + j] * a[l * n + j]).sum();
+        }
+    }
+    // In-place Cholesky of the small m×m system, then y ← S⁻¹ y.
+    for k in 0..m {
+        let mut d = s[k * m + k];
+        for j in 0..k {
+            d -= s[k * m + j] * s[k * m + j];
+        }
+        if !(d > 1e-12 * (1.0 + s[0].abs())) {
+            return None;
+        }
+        let d = d.sqrt();
+        s[k * m + k] = d;
+        for i in k + 1..m {
+            let mut v = s[i * m + k];
+            for j in 0..k {
+                v -= s[i * m + j] * s[k * m + j];
+            }
+            s[i * m + k] = v / d;
+        }
+    }
+    let full: f64 = du.iter().map(|v| v * v).sum();
+    // yᵀ S⁻¹ y = ‖L⁻¹ y‖².
+    let mut quad = 0.0;
+    for k in 0..m {
+        let mut v = y[k];
+        for j in 0..k {
+            v -= s[k * m + j] * y[j];
+        }
+        y[k] = v / s[k * m + k];
+        quad += y[k] * y[k];
+    }
+    Some((full - quad).max(0.0))
+}

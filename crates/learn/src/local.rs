@@ -1,0 +1,125 @@
+//! The local controllers: one reward-weighted regression per receptive field of the forward
+//! model, `u^i = [ẍ_refᵀ, q̇ᵀ, 1] β^i` (eq. 31), following the partition as it changes.
+
+use crate::error::Result;
+use lwpr::RfId;
+use nalgebra::DMatrix;
+use rwr::{OnlineRwr, RwrConfig};
+use std::collections::BTreeMap;
+
+/// One local controller and its bookkeeping.
+#[derive(Clone, Debug)]
+pub struct Local {
+    pub rwr: OnlineRwr,
+    /// Centre of its receptive field in `(q, q̇)`.
+    pub center: Vec<f64>,
+    /// Samples since the last M-step.
+    pub pending: usize,
+    /// M-steps done.
+    pub updates: u64,
+    /// Effective sample size after the last M-step.
+    pub ess: f64,
+}
+
+/// All local controllers, keyed by the stable id of their receptive field.
+#[derive(Clone, Debug, Default)]
+pub struct LocalControllers {
+    pub map: BTreeMap<RfId, Local>,
+}
+
+impl LocalControllers {
+    /// A controller for a new receptive field: `θ` copied from `source` if given and trained,
+    /// else from the trained controller with the nearest centre, else the constant command
+    /// `u_init` (zero when empty; `d` actions, `p` features).
+    pub fn add(
+        &mut self,
+        id: RfId,
+        center: Vec<f64>,
+        source: Option<RfId>,
+        u_init: &[f64],
+        d: usize,
+        p: usize,
+        cfg: &RwrConfig,
+        min_ess: f64,
+    ) -> Result<()> {
+        let trained = |l: &&Local| l.ess >= min_ess;
+        let from = source
+            .and_then(|s| self.map.get(&s))
+            .filter(trained)
+            .or_else(|| {
+                self.map
+                    .values()
+                    .filter(trained)
+                    .min_by(|a, b| dist2(&a.center, &center).total_cmp(&dist2(&b.center, &center)))
+            });
+        let (theta, sigma) = match from {
+            Some(l) => (l.rwr.theta().clone(), l.rwr.sigma()),
+            None => {
+                let mut theta = DMatrix::zeros(p, d);
+                for (j, u) in u_init.iter().enumerate() {
+                    theta[(p - 1, j)] = *u;
+                }
+                (theta, cfg.sigma_init)
+            }
+        };
+        let cfg = RwrConfig {
+            sigma_init: sigma.max(cfg.sigma_min).max(f64::MIN_POSITIVE),
+            ..cfg.clone()
+        };
+        let rwr = OnlineRwr::with_theta(theta, cfg)?;
+        self.map.insert(
+            id,
+            Local {
+                rwr,
+                center,
+                pending: 0,
+                updates: 0,
+                ess: 0.0,
+            },
+        );
+        Ok(())
+    }
+
+    pub fn remove(&mut self, id: RfId) {
+        self.map.remove(&id);
+    }
+
+    pub fn len(&self) -> usize {
+        self.map.len()
+    }
+
+    /// How many controllers are trained (effective sample size ≥ `min_ess`).
+    pub fn n_trained(&self, min_ess: f64) -> usize {
+        self.map.values().filter(|l| l.ess >= min_ess).count()
+    }
+}
+
+fn dist2(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum()
+}
+
+/// A summary of one local controller, for diagnostics and reports.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct LocalSummary {
+    pub id: u64,
+    pub ess: f64,
+    pub sigma: f64,
+    pub tau: f64,
+    pub updates: u64,
+}
+
+impl LocalControllers {
+    /// Summaries of every local controller, by id.
+    pub fn summaries(&self) -> Vec<LocalSummary> {
+        self.map
+            .iter()
+            .map(|(id, l)| LocalSummary {
+                id: id.0,
+                ess: l.ess,
+                sigma: l.rwr.sigma(),
+                tau: l.rwr.tau(),
+                updates: l.updates,
+            })
+            .collect()
+    }
+}

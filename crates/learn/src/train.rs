@@ -1,0 +1,162 @@
+//! The training driver (argmin style: explicit state, a driver loop, an observer): motor babbling
+//! under joint PD control with the learned gravity compensation, then on-policy learning while
+//! tracking the task trajectory with exploration noise, with evaluation at regular intervals.
+//!
+//! The driver talks to the robot only through [`Robot`]; evaluation is a callback supplied by the
+//! caller (who may own a simulator and its model — the driver never does).
+
+use crate::error::Result;
+use crate::learner::Learner;
+use osrl_control::{reference_acceleration, TaskGains, Trajectory};
+use osrl_dynamics::Measurement;
+use rand::{RngExt, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use serde::{Deserialize, Serialize};
+
+/// Motor babbling: random point-to-point joint movements (minimum jerk) under PD control.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct BabbleConfig {
+    /// Simulated minutes of babbling before on-policy learning. Default 2.
+    pub minutes: f64,
+    /// Targets are drawn uniformly within ± this of the home posture (rad), inside the joint
+    /// limits. Default 0.4.
+    pub spread: f64,
+    /// Duration of one move (s), drawn uniformly in this range. Default [0.6, 1.5].
+    pub move_time: [f64; 2],
+    /// Scale of the robot's PD gains while babbling. Default 3.
+    pub gain_scale: f64,
+}
+
+impl Default for BabbleConfig {
+    fn default() -> Self {
+        Self {
+            minutes: 4.0,
+            spread: 0.4,
+            move_time: [0.6, 1.5],
+            gain_scale: 3.0,
+        }
+    }
+}
+
+/// Settings of a training run.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct TrainConfig {
+    /// Simulated minutes of training in all (babbling included). Default 30.
+    pub minutes: f64,
+    pub babble: BabbleConfig,
+    /// Task-space gains of the reference dynamics (eq. 2).
+    pub gains: TaskGains,
+    /// On-policy episodes last this long (s) unless the error grows too large. Default 40.
+    pub episode_seconds: f64,
+    /// An episode stops when the task error exceeds this (m); the arm returns home. Default 0.05.
+    pub reset_error: f64,
+    /// Evaluate every this many simulated training minutes (0: only at the end). Default 2.
+    pub eval_every_minutes: f64,
+    /// Learn from every k-th transition (1 = all). Default 1.
+    pub learn_every: usize,
+    /// Learn during the on-policy phase (false: babbling only, for diagnostics). Default true.
+    pub learn_on_policy: bool,
+    /// Exploration noise during the on-policy phase. Default true.
+    pub explore: bool,
+    /// Seed of the exploration and babbling noise. Default 0.
+    pub seed: u64,
+}
+
+impl Default for TrainConfig {
+    fn default() -> Self {
+        Self {
+            minutes: 30.0,
+            babble: BabbleConfig::default(),
+            gains: TaskGains::default(),
+            episode_seconds: 40.0,
+            reset_error: 0.05,
+            eval_every_minutes: 2.0,
+            learn_every: 1,
+            learn_on_policy: true,
+            explore: true,
+            seed: 0,
+        }
+    }
+}
+
+/// What the observer sees after each evaluation and at the end of each episode.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Progress {
+    pub sim_minutes: f64,
+    pub phase: &'static str,
+    pub n_local_models: usize,
+    pub n_trained: usize,
+    pub episodes: u64,
+    pub aborted_episodes: u64,
+    /// Last evaluation result, if any.
+    pub eval: Option<crate::eval::EvalResult>,
+    /// Largest change of the commanded torque between two consecutive on-policy steps (N·m).
+    pub max_command_step: f64,
+}
+
+#[path = "train_loop.rs"]
+mod train_loop;
+pub use train_loop::{train, TrainSummary};
+
+/// Minimum-jerk interpolation from `a` to `b` over `T`: position and velocity at `s = t/T`.
+pub(crate) fn min_jerk(a: f64, b: f64, t: f64, total: f64) -> (f64, f64) {
+    let s = (t / total).clamp(0.0, 1.0);
+    let p = s * s * s * (10.0 - 15.0 * s + 6.0 * s * s);
+    let v = 30.0 * s * s * (1.0 - s) * (1.0 - s) / total;
+    (a + (b - a) * p, if t < total { (b - a) * v } else { 0.0 })
+}
+
+/// The PD command of babbling and of returning home: `ĝ(q) + K_P (q_d − q) + K_D (q̇_d − q̇)`.
+pub(crate) fn pd_command(
+    learner: &mut Learner,
+    meas: &Measurement,
+    qd_target: &[f64],
+    vd_target: &[f64],
+    scale: f64,
+    u: &mut [f64],
+) -> Result<()> {
+    let n = u.len();
+    // u0 without its PD pull to rest = ĝ: evaluate the nominal and add the pull back.
+    learner.nominal(meas.q.as_slice(), meas.qd.as_slice(), u)?;
+    let nom = &learner.config().nominal;
+    for i in 0..n {
+        let g = u[i] + nom.kd[i] * meas.qd[i] + nom.kp[i] * (meas.q[i] - nom.q_rest[i]);
+        u[i] = g + scale
+            * (nom.kp[i] * (qd_target[i] - meas.q[i]) + nom.kd[i] * (vd_target[i] - meas.qd[i]));
+    }
+    Ok(())
+}
+
+/// The task reference `ẍ_ref` (eq. 2) for a measurement at trajectory time `t`.
+pub(crate) fn reference(
+    traj: &Trajectory,
+    gains: &TaskGains,
+    axes: &[usize],
+    meas: &Measurement,
+    t: f64,
+    out: &mut [f64],
+) {
+    let target = traj.sample(t);
+    reference_acceleration(
+        gains,
+        &target,
+        axes,
+        meas.x.as_slice(),
+        meas.xd.as_slice(),
+        out,
+    );
+}
+
+pub(crate) fn rng(seed: u64) -> ChaCha8Rng {
+    ChaCha8Rng::seed_from_u64(seed)
+}
+
+pub(crate) fn uniform(rng: &mut ChaCha8Rng, lo: f64, hi: f64) -> f64 {
+    if hi > lo {
+        rng.random_range(lo..hi)
+    } else {
+        lo
+    }
+}

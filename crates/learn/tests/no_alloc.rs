@@ -1,0 +1,50 @@
+//! A command of the learned controller does not allocate.
+
+mod common;
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+struct Counting;
+static ALLOCS: AtomicUsize = AtomicUsize::new(0);
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, l: Layout) -> *mut u8 {
+        ALLOCS.fetch_add(1, Ordering::SeqCst);
+        unsafe { System.alloc(l) }
+    }
+    unsafe fn dealloc(&self, p: *mut u8, l: Layout) {
+        unsafe { System.dealloc(p, l) }
+    }
+    unsafe fn realloc(&self, p: *mut u8, l: Layout, n: usize) -> *mut u8 {
+        ALLOCS.fetch_add(1, Ordering::SeqCst);
+        unsafe { System.realloc(p, l, n) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+#[test]
+fn learned_commands_do_not_allocate() {
+    let s = common::planar3();
+    let mut learner = common::learner(&s);
+    common::run(&s, &mut learner, 0.5, 0.5, 0.0, 3);
+    assert!(learner.n_trained() > 0);
+    let mut rng = <rand_chacha::ChaCha8Rng as rand::SeedableRng>::seed_from_u64(0);
+    let (mut u, q, qd) = (vec![0.0; 3], s.q_start.clone(), vec![0.1, -0.1, 0.05]);
+    // Warm the buffers once, then count.
+    learner
+        .command(&q, &qd, &[0.1, 0.2], Some(&mut rng), &mut u)
+        .unwrap();
+    let before = ALLOCS.load(Ordering::SeqCst);
+    for k in 0..100 {
+        let x = 0.01 * k as f64;
+        learner
+            .command(&q, &qd, &[x, -x], Some(&mut rng), &mut u)
+            .unwrap();
+        learner
+            .command::<rand_chacha::ChaCha8Rng>(&q, &qd, &[x, x], None, &mut u)
+            .unwrap();
+    }
+    assert_eq!(ALLOCS.load(Ordering::SeqCst) - before, 0);
+}
