@@ -11,7 +11,11 @@ mod util;
 use clap::{Parser, Subcommand};
 
 #[derive(Parser)]
-#[command(name = "osrl", version, about = "Reinforcement learning for operational space control")]
+#[command(
+    name = "osrl",
+    version,
+    about = "Reinforcement learning for operational space control"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -30,6 +34,8 @@ enum Command {
     /// Analytical operational space control (eq. 4 / eq. 7) on the simulated robot along a
     /// task-space trajectory: tracking metrics, CSV and path plot.
     Simulate(cmd::simulate::Args),
+    /// Run the experiments and write the report folder (index.html, results.json, figures).
+    Reproduce(cmd::reproduce::Args),
 }
 
 fn main() {
@@ -40,6 +46,7 @@ fn main() {
         Command::Dynamics(a) => cmd::dynamics::run(a),
         Command::Toy(a) => cmd::toy::run(a),
         Command::Simulate(a) => cmd::simulate::run(a),
+        Command::Reproduce(a) => cmd::reproduce::run(a),
     };
     if let Err(e) = result {
         // One line: the whole cause chain.

@@ -13,7 +13,10 @@ pub fn load_robot(spec: &str) -> Result<Model> {
     if spec.ends_with(".urdf") || path.exists() {
         return osrl_dynamics::urdf::load_urdf(path).map_err(Into::into);
     }
-    bail!("unknown robot '{spec}': use {} or a .urdf file", robots::BUILTIN.join(", "))
+    bail!(
+        "unknown robot '{spec}': use {} or a .urdf file",
+        robots::BUILTIN.join(", ")
+    )
 }
 
 /// Parses `v1,v2,...` into exactly `n` finite numbers; the error names the flag.
@@ -22,21 +25,34 @@ pub fn parse_vec(flag: &str, text: &str, n: usize) -> Result<Vec<f64>> {
         .split(',')
         .map(|s| {
             let s = s.trim();
-            s.parse::<f64>().ok().filter(|v| v.is_finite()).with_context(|| format!("--{flag}: '{s}' is not a finite number"))
+            s.parse::<f64>()
+                .ok()
+                .filter(|v| v.is_finite())
+                .with_context(|| format!("--{flag}: '{s}' is not a finite number"))
         })
         .collect::<Result<Vec<f64>>>()?;
     if vals.len() != n {
-        bail!("--{flag}: expected {n} comma-separated values (one per joint), got {}", vals.len());
+        bail!(
+            "--{flag}: expected {n} comma-separated values (one per joint), got {}",
+            vals.len()
+        );
     }
     Ok(vals)
 }
 
 /// Prints `value` as one JSON line (the last line of a command's stdout).
 pub fn print_json(value: &serde_json::Value) {
-    println!("{}", serde_json::to_string(value).expect("JSON values serialise"));
+    println!(
+        "{}",
+        serde_json::to_string(value).expect("JSON values serialise")
+    );
 }
 
 /// A matrix as a list of rows.
-pub fn rows<R: nalgebra::Dim, C: nalgebra::Dim, S: nalgebra::RawStorage<f64, R, C>>(m: &nalgebra::Matrix<f64, R, C, S>) -> Vec<Vec<f64>> {
-    (0..m.nrows()).map(|i| (0..m.ncols()).map(|j| m[(i, j)]).collect()).collect()
+pub fn rows<R: nalgebra::Dim, C: nalgebra::Dim, S: nalgebra::RawStorage<f64, R, C>>(
+    m: &nalgebra::Matrix<f64, R, C, S>,
+) -> Vec<Vec<f64>> {
+    (0..m.nrows())
+        .map(|i| (0..m.ncols()).map(|j| m[(i, j)]).collect())
+        .collect()
 }

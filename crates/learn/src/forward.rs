@@ -109,6 +109,14 @@ impl ForwardModel {
         }
     }
 
+    /// Re-creates the skipped query buffers after deserialisation.
+    pub(crate) fn restore_buffers(&mut self) {
+        let (n, m) = (self.n, self.m);
+        self.x = vec![0.0; 3 * n];
+        self.y = vec![0.0; m];
+        self.jac = vec![0.0; 3 * n * m];
+    }
+
     /// Centre of a receptive field in `(q, q̇)`.
     pub fn center(&self, id: RfId) -> Option<Vec<f64>> {
         self.lwpr.rf(0, id).map(|v| v.center())

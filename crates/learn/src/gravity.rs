@@ -80,6 +80,11 @@ impl GravityModel {
         }
     }
 
+    /// Re-creates the skipped query buffers after deserialisation.
+    pub(crate) fn restore_buffers(&mut self) {
+        self.x = vec![0.0; 3 * self.n];
+    }
+
     /// Number of receptive fields.
     pub fn n_rfs(&self) -> usize {
         self.lwpr.n_rfs_total()

@@ -17,3 +17,129 @@ pub mod lwpr_bytes {
         b.to_vec()
     }
 }
+
+use crate::config::LearnerConfig;
+use crate::error::{LearnError, Result};
+use crate::forward::ForwardModel;
+use crate::gravity::GravityModel;
+use crate::learner::{Learner, LearnerStats};
+use crate::local::LocalControllers;
+use osrl_dynamics::Measurement;
+use serde::{Deserialize, Serialize};
+
+/// First bytes of a saved learned controller.
+pub const MAGIC: &[u8; 8] = b"OSRLLC\0\0";
+/// Version of the saved format; files of another version are refused.
+pub const FORMAT_VERSION: u32 = 1;
+
+/// Everything a learner is, as stored (the config as JSON text, so its untagged enums survive).
+#[derive(Serialize, Deserialize)]
+struct Saved {
+    config_json: String,
+    n: usize,
+    m: usize,
+    dt: f64,
+    torque_scale: Vec<f64>,
+    gravity: Option<GravityModel>,
+    forward: Option<ForwardModel>,
+    locals: LocalControllers,
+    warm: Vec<Measurement>,
+    stats: LearnerStats,
+}
+
+/// FNV-1a over the payload: detects corruption that would still parse.
+fn checksum(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &b| {
+        (h ^ b as u64).wrapping_mul(0x0100_0000_01b3)
+    })
+}
+
+impl Learner {
+    /// The whole learner (models, local controllers, counters, config) as bytes:
+    /// `MAGIC`, format version, payload length, FNV-1a checksum, postcard payload.
+    pub fn to_bytes(&self) -> Result<Vec<u8>> {
+        let saved = Saved {
+            config_json: serde_json::to_string(&self.cfg)
+                .map_err(|e| LearnError::Load(e.to_string()))?,
+            n: self.n,
+            m: self.m,
+            dt: self.dt,
+            torque_scale: self.torque_scale.clone(),
+            gravity: self.gravity.clone(),
+            forward: self.forward.clone(),
+            locals: self.locals.clone(),
+            warm: self.warm.clone(),
+            stats: self.stats,
+        };
+        let payload = postcard::to_allocvec(&saved).map_err(|e| LearnError::Load(e.to_string()))?;
+        let mut out = Vec::with_capacity(payload.len() + 28);
+        out.extend_from_slice(MAGIC);
+        out.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
+        out.extend_from_slice(&(payload.len() as u64).to_le_bytes());
+        out.extend_from_slice(&checksum(&payload).to_le_bytes());
+        out.extend_from_slice(&payload);
+        Ok(out)
+    }
+
+    /// A learner from [`Learner::to_bytes`]. Fails on a foreign, truncated, corrupted or
+    /// other-version file; nothing else is touched.
+    pub fn from_bytes(bytes: &[u8]) -> Result<Learner> {
+        let bad = |m: String| LearnError::Load(m);
+        if bytes.len() < 28 || &bytes[..8] != MAGIC {
+            return Err(bad("not an osrl learned-controller file".into()));
+        }
+        let version = u32::from_le_bytes(bytes[8..12].try_into().expect("4 bytes"));
+        if version != FORMAT_VERSION {
+            return Err(bad(format!(
+                "format version {version}, this build reads {FORMAT_VERSION}"
+            )));
+        }
+        let len = u64::from_le_bytes(bytes[12..20].try_into().expect("8 bytes")) as usize;
+        let sum = u64::from_le_bytes(bytes[20..28].try_into().expect("8 bytes"));
+        let payload = &bytes[28..];
+        if payload.len() != len {
+            return Err(bad(format!(
+                "truncated or padded: {} payload bytes, header says {len}",
+                payload.len()
+            )));
+        }
+        if checksum(payload) != sum {
+            return Err(bad("checksum mismatch: the file is corrupted".into()));
+        }
+        let s: Saved =
+            postcard::from_bytes(payload).map_err(|e| bad(format!("malformed payload: {e}")))?;
+        let cfg: LearnerConfig =
+            serde_json::from_str(&s.config_json).map_err(|e| bad(format!("config: {e}")))?;
+        let mut learner = Learner::new(s.n, s.m, s.dt, cfg)?;
+        learner.torque_scale = s.torque_scale;
+        learner.gravity = s.gravity;
+        learner.forward = s.forward;
+        learner.locals = s.locals;
+        learner.warm = s.warm;
+        learner.stats = s.stats;
+        if let Some(g) = learner.gravity.as_mut() {
+            g.restore_buffers();
+        }
+        if let Some(f) = learner.forward.as_mut() {
+            f.restore_buffers();
+        }
+        Ok(learner)
+    }
+
+    /// Writes [`Learner::to_bytes`] to `path` (via a temporary file, so a crash leaves the old file).
+    pub fn save(&self, path: &std::path::Path) -> Result<()> {
+        let bytes = self.to_bytes()?;
+        let tmp = path.with_extension("tmp");
+        std::fs::write(&tmp, &bytes)
+            .and_then(|_| std::fs::rename(&tmp, path))
+            .map_err(|e| LearnError::Load(format!("cannot write {}: {e}", path.display())))
+    }
+
+    /// Reads a learner saved by [`Learner::save`].
+    pub fn load(path: &std::path::Path) -> Result<Learner> {
+        let bytes = std::fs::read(path)
+            .map_err(|e| LearnError::Load(format!("cannot read {}: {e}", path.display())))?;
+        Learner::from_bytes(&bytes)
+            .map_err(|e| LearnError::Load(format!("{}: {e}", path.display())))
+    }
+}

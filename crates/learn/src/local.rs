@@ -8,7 +8,7 @@ use rwr::{OnlineRwr, RwrConfig};
 use std::collections::BTreeMap;
 
 /// One local controller and its bookkeeping.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct Local {
     pub rwr: OnlineRwr,
     /// Centre of its receptive field in `(q, q̇)`.
@@ -22,7 +22,7 @@ pub struct Local {
 }
 
 /// All local controllers, keyed by the stable id of their receptive field.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub struct LocalControllers {
     pub map: BTreeMap<RfId, Local>,
 }

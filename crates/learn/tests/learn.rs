@@ -79,3 +79,37 @@ fn training_reduces_the_tracking_error_and_beats_the_nominal_controller() {
         "nominal {nom:?} vs learned {last:?}"
     );
 }
+
+#[test]
+fn save_load_round_trips_and_bad_files_are_errors() {
+    let s = common::planar3();
+    let mut learner = common::learner(&s);
+    common::run(&s, &mut learner, 0.4, 0.4, 0.0, 5);
+    let bytes = learner.to_bytes().unwrap();
+    let mut back = osrl_learn::Learner::from_bytes(&bytes).unwrap();
+    assert_eq!(
+        back.to_bytes().unwrap(),
+        bytes,
+        "save → load → save is the identity"
+    );
+    // Same commands from the original and the loaded controller.
+    let (q, qd) = (s.q_start.clone(), vec![0.05, -0.02, 0.1]);
+    let (mut u1, mut u2) = (vec![0.0; 3], vec![0.0; 3]);
+    learner
+        .command::<rand_chacha::ChaCha8Rng>(&q, &qd, &[0.3, -0.2], None, &mut u1)
+        .unwrap();
+    back.command::<rand_chacha::ChaCha8Rng>(&q, &qd, &[0.3, -0.2], None, &mut u2)
+        .unwrap();
+    assert_eq!(u1, u2);
+    // Truncated, corrupted, foreign and other-version files are clear errors.
+    let err = |b: &[u8]| osrl_learn::Learner::from_bytes(b).unwrap_err().to_string();
+    assert!(err(&bytes[..bytes.len() - 10]).contains("truncated"));
+    let mut corrupt = bytes.clone();
+    let mid = corrupt.len() / 2;
+    corrupt[mid] ^= 0x40;
+    assert!(err(&corrupt).contains("checksum"));
+    assert!(err(b"hello world, this is not a controller file").contains("not an osrl"));
+    let mut version = bytes.clone();
+    version[8] = 99;
+    assert!(err(&version).contains("version"));
+}

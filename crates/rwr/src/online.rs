@@ -19,7 +19,7 @@ use rand::Rng;
 /// The statistics are stored relative to a running log scale (the largest log weight seen,
 /// decayed by forgetting), so weights never underflow or overflow however large `τ r` gets.
 /// Neither `observe` nor `update` allocates.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct OnlineRwr {
     cfg: RwrConfig,
     policy: LinearGaussianPolicy,

@@ -5,7 +5,7 @@ use nalgebra::DMatrix;
 
 /// `Σ w φφᵀ`, `Σ w φ uᵀ`, `Σ w ‖u‖²`, `Σ w`, `Σ w r`, `Σ w²` for some weights `w ≥ 0`
 /// (possibly all scaled by one common factor, which cancels everywhere they are used).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize, PartialEq)]
 pub(crate) struct Stats {
     pub gram: DMatrix<f64>,
     pub cross: DMatrix<f64>,
@@ -75,7 +75,7 @@ impl Stats {
 }
 
 /// Preallocated buffers for solving eq. 23 from [`Stats`].
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize, PartialEq)]
 pub(crate) struct Solver {
     a: DMatrix<f64>,
     pub theta: DMatrix<f64>,

@@ -29,7 +29,10 @@ pub struct Args {
 pub fn run(a: Args) -> Result<()> {
     let model = load_robot(&a.robot)?;
     let n = model.nq();
-    let opt = |flag: &str, v: &Option<String>| v.as_deref().map_or(Ok(vec![0.0; n]), |t| parse_vec(flag, t, n));
+    let opt = |flag: &str, v: &Option<String>| {
+        v.as_deref()
+            .map_or(Ok(vec![0.0; n]), |t| parse_vec(flag, t, n))
+    };
     let q = parse_vec("q", &a.q, n)?;
     let qd = opt("qd", &a.qd)?;
     let qdd = opt("qdd", &a.qdd)?;
@@ -50,7 +53,9 @@ pub fn run(a: Args) -> Result<()> {
     out["tau"] = rnea(&model, &mut data, &q, &qd, &qdd)?.as_slice().into();
     if let Some(u) = &a.u {
         let u = parse_vec("u", u, n)?;
-        out["qdd_forward"] = forward_dynamics(&model, &mut data, &q, &qd, &u)?.as_slice().into();
+        out["qdd_forward"] = forward_dynamics(&model, &mut data, &q, &qd, &u)?
+            .as_slice()
+            .into();
     }
     if !a.json {
         println!("{}: x = {:?}", model.name(), data.ee_pos.as_slice());

@@ -1,7 +1,8 @@
 //! One module per subcommand.
 
 pub mod dynamics;
-pub mod robot;
 pub mod lwpr;
-pub mod toy;
+pub mod reproduce;
+pub mod robot;
 pub mod simulate;
+pub mod toy;

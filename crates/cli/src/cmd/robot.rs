@@ -36,7 +36,13 @@ pub fn run(a: Args) -> Result<()> {
         "q_rest": spec.q_rest,
     });
     if !a.json {
-        println!("{} — {} revolute joints, {:.3} kg, task axes {:?}", spec.name, model.nq(), model.total_mass(), spec.task_axes);
+        println!(
+            "{} — {} revolute joints, {:.3} kg, task axes {:?}",
+            spec.name,
+            model.nq(),
+            model.total_mass(),
+            spec.task_axes
+        );
     }
     crate::util::print_json(&summary);
     Ok(())
