@@ -14,11 +14,33 @@ fn bench(c: &mut Criterion) {
         let q: Vec<f64> = (0..n).map(|i| 0.1 * i as f64 + 0.2).collect();
         let qd: Vec<f64> = (0..n).map(|i| 0.3 - 0.05 * i as f64).collect();
         let qdd: Vec<f64> = (0..n).map(|i| 0.5 + 0.1 * i as f64).collect();
-        c.bench_function(&format!("{name}/fk_jacobian"), |b| b.iter(|| jacobian(&model, &mut data, black_box(&q)).unwrap()));
-        c.bench_function(&format!("{name}/rnea"), |b| b.iter(|| rnea(&model, &mut data, black_box(&q), &qd, &qdd).map(|t| t[0]).unwrap()));
-        c.bench_function(&format!("{name}/crba"), |b| b.iter(|| crba(&model, &mut data, black_box(&q)).map(|m| m[(0, 0)]).unwrap()));
-        c.bench_function(&format!("{name}/aba"), |b| b.iter(|| aba(&model, &mut data, black_box(&q), &qd, &qdd).map(|a| a[0]).unwrap()));
-        c.bench_function(&format!("{name}/compute_all"), |b| b.iter(|| compute_all(&model, &mut data, black_box(&q), &qd).unwrap()));
+        c.bench_function(&format!("{name}/fk_jacobian"), |b| {
+            b.iter(|| jacobian(&model, &mut data, black_box(&q)).unwrap())
+        });
+        c.bench_function(&format!("{name}/rnea"), |b| {
+            b.iter(|| {
+                rnea(&model, &mut data, black_box(&q), &qd, &qdd)
+                    .map(|t| t[0])
+                    .unwrap()
+            })
+        });
+        c.bench_function(&format!("{name}/crba"), |b| {
+            b.iter(|| {
+                crba(&model, &mut data, black_box(&q))
+                    .map(|m| m[(0, 0)])
+                    .unwrap()
+            })
+        });
+        c.bench_function(&format!("{name}/aba"), |b| {
+            b.iter(|| {
+                aba(&model, &mut data, black_box(&q), &qd, &qdd)
+                    .map(|a| a[0])
+                    .unwrap()
+            })
+        });
+        c.bench_function(&format!("{name}/compute_all"), |b| {
+            b.iter(|| compute_all(&model, &mut data, black_box(&q), &qd).unwrap())
+        });
         let mut sim = SimRobot::new(model.clone(), SimConfig::default()).unwrap();
         let u = model.spec().q_start.iter().map(|_| 0.0).collect::<Vec<_>>();
         c.bench_function(&format!("{name}/sim_control_period"), |b| {
