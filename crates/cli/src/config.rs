@@ -17,11 +17,18 @@
 //! mass_scale = 1.3
 //! [simulate]
 //! seconds = 12.0
+//! [learner]               # osrl_learn::LearnerConfig (`osrl train`); empty nominal = robot's
+//! min_ess = 50.0
+//! [train]                 # osrl_learn::train::TrainConfig (`osrl train`)
+//! minutes = 30.0
+//! babble = { minutes = 4.0 }
 //! ```
 
 use anyhow::{bail, Context, Result};
 use osrl_control::{ModelError, OscConfig, TrajectoryConfig};
-use osrl_dynamics::SimConfig;
+use osrl_dynamics::{Model, SimConfig};
+use osrl_learn::train::TrainConfig;
+use osrl_learn::LearnerConfig;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -56,6 +63,11 @@ pub struct Config {
     pub model_error: ModelError,
     /// `osrl simulate` settings.
     pub simulate: SimulateConfig,
+    /// The learned controller (`osrl train`). The nominal behaviour's gains and rest posture,
+    /// when left empty, are the robot's ([`Config::learner_for`]).
+    pub learner: LearnerConfig,
+    /// The training run (`osrl train`): minutes, babbling, task gains, evaluation interval, seed.
+    pub train: TrainConfig,
 }
 
 impl Default for Config {
@@ -67,6 +79,8 @@ impl Default for Config {
             sim: SimConfig::default(),
             model_error: ModelError::default(),
             simulate: SimulateConfig::default(),
+            learner: LearnerConfig::default(),
+            train: TrainConfig::default(),
         }
     }
 }
@@ -82,12 +96,44 @@ impl Config {
         toml::from_str(&text).with_context(|| format!("parsing config {}", p.display()))
     }
 
+    /// The `[learner]` section for `model`: empty nominal gains and rest posture filled in from
+    /// the robot's data sheet (its PD gains and rest posture), then validated.
+    pub fn learner_for(&self, model: &Model) -> Result<LearnerConfig> {
+        let mut l = self.learner.clone();
+        let spec = model.spec();
+        for (v, def) in [
+            (&mut l.nominal.kp, &spec.kp),
+            (&mut l.nominal.kd, &spec.kd),
+            (&mut l.nominal.q_rest, &spec.q_rest),
+        ] {
+            if v.is_empty() {
+                v.clone_from(def);
+            }
+        }
+        l.validate(model.nq()).context("[learner] section")?;
+        Ok(l)
+    }
+
     /// Checks every section that can be checked without the robot (the trajectory is checked when
     /// it is built for the robot).
     pub fn validate(&self) -> Result<()> {
         self.controller.validate()?;
         self.sim.validate()?;
         self.model_error.validate()?;
+        let t = &self.train;
+        if !(t.minutes > 0.0 && t.minutes.is_finite()) {
+            bail!("train.minutes must be a positive number, got {}", t.minutes);
+        }
+        if !(t.eval_every_minutes >= 0.0 && t.eval_every_minutes.is_finite()) {
+            bail!(
+                "train.eval_every_minutes must be ≥ 0, got {}",
+                t.eval_every_minutes
+            );
+        }
+        if !(t.babble.minutes >= 0.0 && t.babble.minutes.is_finite()) {
+            bail!("train.babble.minutes must be ≥ 0, got {}", t.babble.minutes);
+        }
+        t.gains.validate()?;
         let s = self.simulate.seconds;
         if !(s > 0.0 && s.is_finite()) {
             bail!("simulate.seconds must be a positive number, got {s}");
@@ -114,5 +160,19 @@ mod tests {
         assert!(toml::from_str::<Config>("[controller]\nkp = 3.0").is_err());
         let bad: Config = toml::from_str("[simulate]\nseconds = -1.0").unwrap();
         assert!(bad.validate().is_err());
+        let l: Config = toml::from_str(
+            "[learner]\nmin_ess = 20.0\n[train]\nminutes = 3.0\nbabble = { minutes = 1.0 }",
+        )
+        .unwrap();
+        assert_eq!(l.learner.min_ess, 20.0);
+        assert_eq!((l.train.minutes, l.train.babble.minutes), (3.0, 1.0));
+        let model = osrl_dynamics::robots::planar3();
+        let lc = l.learner_for(&model).unwrap();
+        assert_eq!(lc.nominal.kp, model.spec().kp);
+        assert!(toml::from_str::<Config>("[learner]\nmin_es = 2.0").is_err());
+        assert!(toml::from_str::<Config>("[train]\nminutes = -2.0")
+            .unwrap()
+            .validate()
+            .is_err());
     }
 }

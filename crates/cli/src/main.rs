@@ -5,7 +5,9 @@
 
 mod cmd;
 mod config;
+mod learned;
 mod plot;
+mod progress;
 mod util;
 
 use clap::{Parser, Subcommand};
@@ -31,9 +33,13 @@ enum Command {
     Dynamics(cmd::dynamics::Args),
     /// Fig. 1 experiment: adaptive vs fixed reward transformation of RWR on a 1-D toy problem.
     Toy(cmd::toy::Args),
-    /// Analytical operational space control (eq. 4 / eq. 7) on the simulated robot along a
-    /// task-space trajectory: tracking metrics, CSV and path plot.
+    /// Operational space control on the simulated robot along a task-space trajectory —
+    /// analytical (eq. 4 / eq. 7) or a learned controller — tracking metrics, CSV and path plot.
     Simulate(cmd::simulate::Args),
+    /// Train the learned operational space controller (babbling, then on-policy RWR) and save it.
+    Train(cmd::train::Args),
+    /// Evaluate a saved learned controller against the analytical optimum u* (eq. 7).
+    Eval(cmd::eval::Args),
     /// Run the experiments and write the report folder (index.html, results.json, figures).
     Reproduce(cmd::reproduce::Args),
 }
@@ -46,6 +52,8 @@ fn main() {
         Command::Dynamics(a) => cmd::dynamics::run(a),
         Command::Toy(a) => cmd::toy::run(a),
         Command::Simulate(a) => cmd::simulate::run(a),
+        Command::Train(a) => cmd::train::run(a),
+        Command::Eval(a) => cmd::eval::run(a),
         Command::Reproduce(a) => cmd::reproduce::run(a),
     };
     if let Err(e) = result {

@@ -1,8 +1,10 @@
 //! One module per subcommand.
 
 pub mod dynamics;
+pub mod eval;
 pub mod lwpr;
 pub mod reproduce;
 pub mod robot;
 pub mod simulate;
 pub mod toy;
+pub mod train;

@@ -3,19 +3,35 @@
 //! metrics; with `--json` the last stdout line is one JSON object; with `--out DIR` it writes
 //! `simulate.csv` (time series), `path.svg/png` (desired vs actual path, error over time),
 //! `metrics.json` and the effective `config.toml`.
+//!
+//! `--controller learned:MODEL` runs a controller saved by `osrl train` instead: the robot and
+//! the trajectory default to the model's (its sidecar), a model error's payload goes on the
+//! simulated robot (the other errors concern an analytical model, which it does not have).
+
+mod output;
 
 use crate::config::Config;
-use crate::plot::{self, Figure, Panel, Series, PALETTE};
+use crate::learned::{load_model, LearnedController};
 use crate::util::{load_robot, print_json};
-use anyhow::{Context, Result};
+use anyhow::{bail, Context, Result};
 use osrl_control::{
-    check_reachable, run_closed_loop, IkOptions, Law, MetricKind, ModelError, Osc, Run,
+    check_reachable, run_closed_loop, IkOptions, Law, MetricKind, ModelError, Osc, TaskController,
     TrajectoryKind,
 };
 use osrl_dynamics::SimRobot;
-use std::io::Write;
-use std::path::{Path, PathBuf};
+pub use output::path_figure;
+use output::write_outputs;
+use std::path::PathBuf;
 use std::time::Instant;
+
+/// `eq4`, `eq7` or `learned:MODEL`.
+fn parse_controller(s: &str) -> std::result::Result<String, String> {
+    match s {
+        "eq4" | "eq7" => Ok(s.into()),
+        _ if s.strip_prefix("learned:").is_some_and(|p| !p.is_empty()) => Ok(s.into()),
+        _ => Err("use eq4, eq7 or learned:MODEL (a file saved by `osrl train`)".into()),
+    }
+}
 
 /// Arguments of `osrl simulate` (flags override the config file).
 #[derive(clap::Args, Debug)]
@@ -23,8 +39,9 @@ pub struct Args {
     /// Robot: `planar3`, `sarcos7` or a URDF file (default: the config's, planar3).
     #[arg(long)]
     pub robot: Option<String>,
-    /// Control law: `eq4` or `eq7` (default: the config's, eq7).
-    #[arg(long, value_parser = ["eq4", "eq7"])]
+    /// Controller: `eq4`, `eq7` (analytical) or `learned:MODEL` (saved by `osrl train`)
+    /// (default: the config's, eq7).
+    #[arg(long, value_parser = parse_controller)]
     pub controller: Option<String>,
     /// Metric N of eq. 7: `identity`, `mass`, `inverse_mass` (default: the config's, identity).
     #[arg(long, value_parser = ["identity", "mass", "inverse_mass"])]
@@ -49,13 +66,29 @@ pub struct Args {
     pub json: bool,
 }
 
-/// The config file with the flags applied, validated.
-fn effective_config(a: &Args) -> Result<Config> {
+/// The config file with the flags applied, validated; with a learned controller, its sidecar's
+/// robot and trajectory are the defaults.
+fn effective_config(a: &Args, learned: Option<&crate::learned::Sidecar>) -> Result<Config> {
     let mut cfg = Config::load(a.config.as_deref())?;
+    if let Some(side) = learned {
+        cfg.robot = side.robot.clone();
+        cfg.trajectory = side.trajectory.clone();
+        if a.robot.as_ref().is_some_and(|r| *r != side.robot) {
+            bail!(
+                "--robot {}: the learned controller was trained on {}",
+                a.robot.as_deref().unwrap_or(""),
+                side.robot
+            );
+        }
+    }
     if let Some(r) = &a.robot {
         cfg.robot = r.clone();
     }
-    if let Some(c) = &a.controller {
+    if let Some(c) = a
+        .controller
+        .as_deref()
+        .filter(|c| !c.starts_with("learned:"))
+    {
         cfg.controller.law = if c == "eq4" { Law::Eq4 } else { Law::Eq7 };
     }
     if let Some(m) = &a.metric {
@@ -84,18 +117,45 @@ fn effective_config(a: &Args) -> Result<Config> {
 
 /// Runs the closed loop, prints the summary, writes the files.
 pub fn run(a: Args) -> Result<()> {
-    let cfg = effective_config(&a)?;
+    let model_path = a
+        .controller
+        .as_deref()
+        .and_then(|c| c.strip_prefix("learned:"))
+        .map(PathBuf::from);
+    let loaded = model_path.as_deref().map(load_model).transpose()?;
+    let cfg = effective_config(&a, loaded.as_ref().map(|l| &l.1))?;
     let model = load_robot(&cfg.robot)?;
     let traj = cfg.trajectory.build(&model)?;
     let reach = check_reachable(&model, &traj, &IkOptions::default())?;
     let (sim_model, ctrl_model) = cfg.model_error.apply(&model)?;
     let mut sim = SimRobot::new(sim_model, cfg.sim.clone())?;
     sim.reset(&reach.q_start, &vec![0.0; model.nq()])?;
-    let mut ctrl = Osc::new(ctrl_model, cfg.controller.clone())?;
+    let mut learned =
+        loaded.map(|(l, side)| LearnedController::new(l, side.gains, model.task_axes()));
+    if let Some(l) = &learned {
+        let (n, m) = l.learner.dims();
+        if (n, m) != (model.nq(), model.task_dim()) {
+            bail!(
+                "the learned controller has {n} joints and a {m}-D task, {} has {} and {}",
+                model.name(),
+                model.nq(),
+                model.task_dim()
+            );
+        }
+    }
+    let mut osc = match learned {
+        Some(_) => None,
+        None => Some(Osc::new(ctrl_model, cfg.controller.clone())?),
+    };
+    let ctrl: &mut dyn TaskController = match (&mut learned, &mut osc) {
+        (Some(l), _) => l,
+        (None, Some(o)) => o,
+        (None, None) => unreachable!("one controller is built"),
+    };
     let wall = Instant::now();
     let run = run_closed_loop(
         &mut sim,
-        &mut ctrl,
+        ctrl,
         &traj,
         model.task_axes(),
         cfg.simulate.seconds,
@@ -104,6 +164,13 @@ pub fn run(a: Args) -> Result<()> {
     let wall = wall.elapsed().as_secs_f64();
     let m = &run.metrics;
     let law = match cfg.controller.law {
+        _ if learned.is_some() => format!(
+            "learned ({})",
+            model_path
+                .as_deref()
+                .map(|p| p.display().to_string())
+                .unwrap_or_default()
+        ),
         Law::Eq4 => "eq4".to_string(),
         Law::Eq7 => {
             let n = match cfg.controller.metric {
@@ -153,6 +220,16 @@ pub fn run(a: Args) -> Result<()> {
         (m.sim_seconds / wall.max(1e-9)).into(),
     );
     obj.insert("q_start".into(), serde_json::to_value(&reach.q_start)?);
+    if let Some(l) = &learned {
+        let c = l.counts;
+        obj.insert("learned_steps".into(), c[0].into());
+        obj.insert("extrapolated_steps".into(), c[1].into());
+        obj.insert("fallback_steps".into(), c[2].into());
+        println!(
+            "learned controller: {} blended, {} extrapolated, {} fallback (u0) steps",
+            c[0], c[1], c[2]
+        );
+    }
     if let Some(dir) = &a.out {
         let files = write_outputs(dir, &cfg, &run, &model, &json)?;
         println!(
@@ -168,87 +245,4 @@ pub fn run(a: Args) -> Result<()> {
         print_json(&json);
     }
     Ok(())
-}
-
-/// CSV, plot, metrics and config into `dir`.
-fn write_outputs(
-    dir: &Path,
-    cfg: &Config,
-    run: &Run,
-    model: &osrl_dynamics::Model,
-    metrics: &serde_json::Value,
-) -> Result<Vec<PathBuf>> {
-    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
-    let s = &run.series;
-    let names = ["x", "y", "z"];
-    let axes = model.task_axes();
-    let csv = dir.join("simulate.csv");
-    let mut w = std::io::BufWriter::new(
-        std::fs::File::create(&csv).with_context(|| format!("creating {}", csv.display()))?,
-    );
-    let mut head = vec!["t".to_string()];
-    head.extend(axes.iter().map(|&a| format!("{}_d", names[a])));
-    head.extend(axes.iter().map(|&a| names[a].to_string()));
-    head.push("error_mm".into());
-    head.extend((0..s.n).map(|i| format!("q{i}")));
-    head.extend((0..s.n).map(|i| format!("u{i}")));
-    writeln!(w, "{}", head.join(","))?;
-    for k in 0..s.len() {
-        let mut row = vec![s.t[k]];
-        row.extend(&s.x_d[k * s.m..(k + 1) * s.m]);
-        row.extend(&s.x[k * s.m..(k + 1) * s.m]);
-        row.push(1e3 * s.error(k));
-        row.extend(&s.q[k * s.n..(k + 1) * s.n]);
-        row.extend(&s.u[k * s.n..(k + 1) * s.n]);
-        let row: Vec<String> = row.iter().map(|v| format!("{v}")).collect();
-        writeln!(w, "{}", row.join(","))?;
-    }
-    w.flush()?;
-    let mut files = vec![csv];
-    files.extend(plot::save(&path_figure(s, axes), dir, "path")?);
-    let mj = dir.join("metrics.json");
-    std::fs::write(&mj, serde_json::to_string_pretty(metrics)?)?;
-    let ct = dir.join("config.toml");
-    std::fs::write(&ct, toml::to_string(cfg)?)?;
-    files.extend([mj, ct]);
-    Ok(files)
-}
-
-/// Desired vs actual path in the plane of the two task coordinates that move most, and the
-/// tracking error over time.
-fn path_figure(s: &osrl_control::Series, axes: &[usize]) -> Figure {
-    let names = ["x", "y", "z"];
-    let span = |c: usize| {
-        let v = (0..s.len()).map(|k| s.x_d[k * s.m + c]);
-        v.clone().fold(f64::MIN, f64::max) - v.fold(f64::MAX, f64::min)
-    };
-    let mut cols: Vec<usize> = (0..s.m).collect();
-    cols.sort_by(|&a, &b| span(b).total_cmp(&span(a)));
-    let (c1, c2) = if s.m >= 2 {
-        let (a, b) = (cols[0].min(cols[1]), cols[0].max(cols[1]));
-        (a, b)
-    } else {
-        (0, 0)
-    };
-    let pts = |v: &Vec<f64>| -> Vec<(f64, f64)> {
-        (0..s.len())
-            .map(|k| (v[k * s.m + c1], v[k * s.m + c2]))
-            .collect()
-    };
-    let mut path = Panel::new(
-        "end-effector path",
-        &format!("{} [m]", names[axes[c1]]),
-        &format!("{} [m]", names[axes[c2]]),
-    )
-    .with(
-        Series::line("desired", pts(&s.x_d))
-            .color(PALETTE[0])
-            .width(3),
-    )
-    .with(Series::line("actual", pts(&s.x)).color(PALETTE[1]).dashed());
-    path.equal_axes = true;
-    let err: Vec<(f64, f64)> = (0..s.len()).map(|k| (s.t[k], 1e3 * s.error(k))).collect();
-    let error = Panel::new("tracking error", "time [s]", "‖x − x_d‖ [mm]")
-        .with(Series::line("", err).color(PALETTE[1]));
-    Figure::grid(vec![path, error], 2)
 }
