@@ -41,6 +41,19 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if let Ok(v) = std::env::var("VS") {
         lcfg.velocity_scale = v.parse()?;
     }
+    if let Ok(v) = std::env::var("FORGET") {
+        lcfg.rwr.forgetting = v.parse()?;
+    }
+    if let Ok(v) = std::env::var("PRIOR") {
+        lcfg.rwr.ridge_to_previous = true;
+        lcfg.rwr.ridge = v.parse()?;
+    }
+    if let Ok(v) = std::env::var("TAUMAX") {
+        lcfg.rwr.tau_max = Some(v.parse()?);
+    }
+    if std::env::var("ISO").is_ok() {
+        lcfg.exploration = osrl_learn::ExplorationKind::Isotropic;
+    }
     if let Ok(v) = std::env::var("CAP") {
         lcfg.exploration_cap = v.parse()?;
     }

@@ -17,6 +17,20 @@ pub enum CostKind {
     NullSpace,
 }
 
+/// How exploration noise is shaped.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ExplorationKind {
+    /// Isotropic Gaussian actuator noise of the blended `σ`, capped per joint by
+    /// `exploration_cap`.
+    #[default]
+    Isotropic,
+    /// The same capped isotropic noise plus Gaussian noise of the blended `σ` projected onto the
+    /// null space of `Â = ∂ẍ/∂u` (from the forward model): it explores the redundancy that RWR
+    /// must resolve without disturbing the task (to first order).
+    NullSpace,
+}
+
 /// The nominal behaviour `u0 = ĝ(q) − K_Dq q̇ − K_Pq (q − q_rest)` (eq. 6 plus learned gravity).
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -63,6 +77,8 @@ pub struct LearnerConfig {
     pub update_every: usize,
     /// Scale of the exploration noise relative to each local controller's `σ_i`. Default 1.
     pub exploration_scale: f64,
+    /// Shape of the exploration noise. Default `isotropic`.
+    pub exploration: ExplorationKind,
     /// Cap on the exploration noise of joint `j`, as a share of the standard deviation of its
     /// torques during the warm-up (so light distal joints are not shaken by the noise that
     /// suits heavy proximal ones). Default 0.05.
@@ -111,6 +127,7 @@ impl Default for LearnerConfig {
             min_ess: 50.0,
             update_every: 25,
             exploration_scale: 1.0,
+            exploration: ExplorationKind::Isotropic,
             exploration_cap: 0.05,
             max_abs_acceleration: 1000.0,
             warmup_samples: 1000,

@@ -1,7 +1,7 @@
 //! One learning step and one command of the [`Learner`](super::Learner).
 
 use super::Learner;
-use crate::config::CostKind;
+use crate::config::{CostKind, ExplorationKind};
 use crate::error::{LearnError, Result};
 use lwpr::RfEvent;
 use osrl_dynamics::Measurement;
@@ -132,6 +132,22 @@ impl Learner {
         }
         if let Some(rng) = rng {
             let cap = self.cfg.exploration_cap;
+            if self.cfg.exploration == ExplorationKind::NullSpace {
+                // z ~ N(0, σ² I) projected onto the null space of Â: z − Âᵀ (Â Âᵀ)⁻¹ Â z.
+                let fwd = self.forward.as_mut().expect("models exist");
+                let ws = &mut self.ws;
+                for z in ws.du.iter_mut() {
+                    let s: f64 = StandardNormal.sample(rng);
+                    *z = sigma * s;
+                }
+                if fwd.input_gain(q, qd, u, &mut ws.a_hat)?
+                    && project_null(&ws.a_hat, &mut ws.du, m, &mut ws.y, &mut ws.s)
+                {
+                    for (v, z) in u.iter_mut().zip(&ws.du) {
+                        *v += z;
+                    }
+                }
+            }
             for (v, s) in u.iter_mut().zip(&self.torque_scale) {
                 let z: f64 = StandardNormal.sample(rng);
                 *v += sigma.min(cap * s) * z;
@@ -299,4 +315,68 @@ pub(crate) fn null_space_cost(
         quad += y[k] * y[k];
     }
     Some((full - quad).max(0.0))
+}
+
+/// `z ← z − Âᵀ (Â Âᵀ)⁻¹ Â z` (Â m×n row-major); `false` (z unchanged) if `Â Âᵀ` is singular.
+pub(crate) fn project_null(
+    a: &[f64],
+    z: &mut [f64],
+    m: usize,
+    y: &mut [f64],
+    s: &mut [f64],
+) -> bool {
+    let n = z.len();
+    for k in 0..m {
+        y[k] = (0..n).map(|j| a[k * n + j] * z[j]).sum();
+        for l in 0..m {
+            s[k * m + l] = (0..n).map(|j| a[k * n + j] * a[l * n + j]).sum();
+        }
+    }
+    if !cholesky(s, m) {
+        return false;
+    }
+    // y ← S⁻¹ y by forward and back substitution with the factor L (S = L Lᵀ).
+    for k in 0..m {
+        let mut v = y[k];
+        for j in 0..k {
+            v -= s[k * m + j] * y[j];
+        }
+        y[k] = v / s[k * m + k];
+    }
+    for k in (0..m).rev() {
+        let mut v = y[k];
+        for j in k + 1..m {
+            v -= s[j * m + k] * y[j];
+        }
+        y[k] = v / s[k * m + k];
+    }
+    for j in 0..n {
+        z[j] -= (0..m).map(|k| a[k * n + j] * y[k]).sum::<f64>();
+    }
+    true
+}
+
+/// In-place Cholesky factor (lower triangle) of the small m×m matrix `s`; `false` if not
+/// positive definite.
+fn cholesky(s: &mut [f64], m: usize) -> bool {
+    let scale = (0..m).map(|k| s[k * m + k]).fold(0.0, f64::max);
+    for k in 0..m {
+        let mut d = s[k * m + k];
+        for j in 0..k {
+            d -= s[k * m + j] * s[k * m + j];
+        }
+        if !(d > 1e-12 * scale) {
+            return false;
+        }
+        let d = d.sqrt();
+        s[k * m + k] = d;
+        for i in k + 1..m {
+            let mut v = s[i * m + k];
+            for j in 0..k {
+                v -= s[i * m + j] * s[k * m + j];
+            }
+            s[i * m + k] = v / d;
+        }
+    }
+    true
 }

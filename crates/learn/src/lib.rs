@@ -34,7 +34,7 @@ mod learner;
 mod local;
 pub mod train;
 
-pub use config::{CostKind, LearnerConfig, NominalConfig};
+pub use config::{CostKind, ExplorationKind, LearnerConfig, NominalConfig};
 pub use error::{LearnError, Result};
 pub use forward::ForwardModel;
 pub use gravity::GravityModel;

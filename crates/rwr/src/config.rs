@@ -35,6 +35,10 @@ pub struct RwrConfig {
     /// (weights sum to one, eq. 25, so `λ` is in squared feature units, independent of the
     /// number of samples). Must be ≥ 0. Default 1e-9.
     pub ridge: f64,
+    /// Online form only: the ridge pulls `θ` towards its previous value instead of towards zero
+    /// (a proximal M-step), so directions the recent samples do not excite keep what was learned
+    /// before. Default false (plain ridge).
+    pub ridge_to_previous: bool,
     /// Forgetting factor `λ_f` of the online form, in (0, 1]: before each new sample, the
     /// sufficient statistics are multiplied by it (1 = remember everything; effective memory
     /// about `1/(1−λ_f)` samples). Ignored by the batch form. Default 1.0.
@@ -52,6 +56,7 @@ impl Default for RwrConfig {
             update_sigma: true,
             sigma_min: 1e-6,
             ridge: 1e-9,
+            ridge_to_previous: false,
             forgetting: 1.0,
         }
     }

@@ -132,7 +132,10 @@ impl OnlineRwr {
     /// off), `τ` by eq. 28 (and safeguards, unless fixed). Fails, changing nothing, when no
     /// sample has weight or the Gram matrix is singular (too few samples and no ridge).
     pub fn update(&mut self) -> Result<StepInfo> {
-        let msr = self.solver.solve(&self.stats, self.cfg.ridge)?;
+        let prior = self.cfg.ridge_to_previous.then(|| self.policy.theta());
+        let msr = self
+            .solver
+            .solve_with_prior(&self.stats, self.cfg.ridge, prior)?;
         let sigma = self.cfg.next_sigma(self.policy.sigma(), msr);
         let (ess, mean_cost) = (self.stats.ess(), self.stats.mean_cost());
         let tau_next = self.cfg.next_tau(self.tau, mean_cost, ess);

@@ -93,6 +93,17 @@ impl Solver {
     /// mean squared residual per action dimension `Σ w ‖u − θᵀφ‖² / (d Σw)` (eq. 24).
     /// Only the lower triangle of `G` is read. Does not allocate.
     pub fn solve(&mut self, s: &Stats, ridge: f64) -> Result<f64> {
+        self.solve_with_prior(s, ridge, None)
+    }
+
+    /// Like [`Solver::solve`], with the ridge pulling towards `prior` instead of zero:
+    /// `θ = (G/Σw + λI)⁻¹ (C/Σw + λ θ_prior)` (a proximal M-step).
+    pub fn solve_with_prior(
+        &mut self,
+        s: &Stats,
+        ridge: f64,
+        prior: Option<&DMatrix<f64>>,
+    ) -> Result<f64> {
         if s.sw.is_nan() || s.sw <= 0.0 {
             return Err(RwrError::NoWeight);
         }
@@ -106,6 +117,11 @@ impl Solver {
         }
         self.theta.copy_from(&s.cross);
         self.theta *= inv;
+        if let Some(prior) = prior {
+            for (t, p) in self.theta.iter_mut().zip(prior.iter()) {
+                *t += ridge * p;
+            }
+        }
         cholesky_solve_lower(&mut self.a, &mut self.theta)?;
         // Σw‖u − θᵀφ‖² = Σw‖u‖² − 2 tr(θᵀC) + tr(θᵀGθ), with G symmetric from its lower triangle.
         let (t, g) = (&self.theta, &s.gram);

@@ -167,3 +167,40 @@ fn seeded_sampling_is_reproducible_and_has_the_policy_moments() {
         );
     }
 }
+
+#[test]
+fn ridge_to_previous_keeps_unexcited_directions() {
+    use nalgebra::DMatrix;
+    // Features [x, 1] with x always 0: the slope is not excited by the data. A plain ridge pulls
+    // it to 0; the proximal ridge keeps the previous slope.
+    let prior = DMatrix::from_row_slice(2, 1, &[3.0, 0.5]);
+    let fit = |to_prev: bool| {
+        let cfg = rwr::RwrConfig {
+            ridge: 1e-3,
+            ridge_to_previous: to_prev,
+            adapt_tau: false,
+            ..Default::default()
+        };
+        let mut o = rwr::OnlineRwr::with_theta(prior.clone(), cfg).unwrap();
+        for k in 0..100 {
+            o.observe(&[0.0, 1.0], &[1.0 + 0.01 * (k % 3) as f64], 0.0, 1.0)
+                .unwrap();
+        }
+        o.update().unwrap();
+        o.theta().clone()
+    };
+    let plain = fit(false);
+    let prox = fit(true);
+    assert!(
+        plain[(0, 0)].abs() < 1e-12,
+        "plain ridge: slope {}",
+        plain[(0, 0)]
+    );
+    assert!(
+        (prox[(0, 0)] - 3.0).abs() < 1e-12,
+        "proximal ridge: slope {}",
+        prox[(0, 0)]
+    );
+    // The excited intercept follows the data either way.
+    assert!((plain[(1, 0)] - 1.01).abs() < 0.01 && (prox[(1, 0)] - 1.01).abs() < 0.01);
+}
