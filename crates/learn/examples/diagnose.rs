@@ -25,6 +25,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if let Ok(d) = std::env::var("INITD") {
         lcfg.forward.init_d = lwpr::MetricInit::Scalar(d.parse()?);
     }
+    if let Ok(v) = std::env::var("FORGET") {
+        lcfg.rwr.forgetting = v.parse()?;
+    }
+    if std::env::var("NOUPD").is_ok() {
+        lcfg.forward.update_d = false;
+    }
     if let Ok(v) = std::env::var("VS") {
         lcfg.velocity_scale = v.parse()?;
     }
@@ -64,6 +70,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut sim3 = SimRobot::new(model.clone(), SimConfig::default())?;
     sim3.reset(&reach.q_start, &vec![0.0; n])?;
     let mut count = 0;
+    let (mut a_err, mut a_count) = (0.0, 0);
     for k in (0..k_all).step_by(10) {
         // Reconstruct the state by replaying: cheaper to re-run the analytical controller.
         let _ = k;
@@ -99,6 +106,33 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             .enumerate()
             .map(|(j, &a)| (xdd[a] - xdd_ref[j]).powi(2))
             .sum::<f64>();
+        // Â from the forward model against the true A = J M⁻¹ on the task rows.
+        let mut a_hat = vec![0.0; m * n];
+        if learner.input_gain(q, qd, &u, &mut a_hat)? {
+            let mass = osrl_dynamics::crba(&model, &mut data, q)?.clone();
+            osrl_dynamics::jacobian(&model, &mut data, q)?;
+            let minv = mass.try_inverse().unwrap();
+            let a_true = &data.jac * minv;
+            let (mut e, mut t) = (0.0, 0.0);
+            for (j, &ax) in axes.iter().enumerate() {
+                for i in 0..n {
+                    e += (a_hat[j * n + i] - a_true[(ax, i)]).powi(2);
+                    t += a_true[(ax, i)].powi(2);
+                }
+            }
+            a_err += (e / t).sqrt();
+            if a_count == 0 {
+                println!("Â = {a_hat:?}");
+                println!(
+                    "A  = {:?}",
+                    axes.iter()
+                        .flat_map(|&ax| (0..n).map(move |i| (ax, i)))
+                        .map(|(ax, i)| a_true[(ax, i)])
+                        .collect::<Vec<_>>()
+                );
+            }
+            a_count += 1;
+        }
         count += 1;
         // Advance the analytical run 10 steps.
         for _ in 0..10 {
@@ -126,6 +160,18 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         (us2 / c).sqrt(),
         fb,
         count
+    );
+    if let Some(f) = learner.forward_model() {
+        let regs: Vec<usize> = f.lwpr().rfs(0)?.map(|v| v.n_reg()[0]).collect();
+        let mut hist = std::collections::BTreeMap::new();
+        for r in regs {
+            *hist.entry(r).or_insert(0) += 1;
+        }
+        println!("forward model PLS directions (count of RFs by R, output 0): {hist:?}");
+    }
+    println!(
+        "Â relative error (Frobenius): mean {:.3} over {a_count} states",
+        a_err / a_count.max(1) as f64
     );
     println!(
         "task acceleration error rms {:.3} m/s²",

@@ -31,11 +31,15 @@ impl ForwardModel {
         velocity_scale: f64,
         torque_scale: &[f64],
         acc_scale: f64,
+        with_q: bool,
     ) -> Result<Self> {
+        // With `with_q` the local regression also uses `q`: inside a receptive field `ẍ` varies
+        // with `q` through `h(q)`, and without `q` that variation (correlated with the gravity
+        // compensation in `u`) biases the slope `∂ẍ/∂u` towards zero.
         let mut cfg = cfg.clone();
         cfg.shared_rfs = true;
         cfg.kernel_dims = Some((0..2 * n).collect());
-        cfg.regression_dims = Some((n..3 * n).collect());
+        cfg.regression_dims = Some(((if with_q { 0 } else { n })..3 * n).collect());
         let mut norm = vec![1.0; n];
         norm.extend(std::iter::repeat_n(velocity_scale, n));
         norm.extend_from_slice(torque_scale);

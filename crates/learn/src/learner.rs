@@ -36,6 +36,7 @@ pub(crate) struct Scratch {
     pub du: Vec<f64>,
     pub ui: Vec<f64>,
     pub target: Vec<f64>,
+    pub phi_d: Vec<f64>,
     pub a_hat: Vec<f64>,
     pub y: Vec<f64>,
     pub s: Vec<f64>,
@@ -78,6 +79,7 @@ impl Learner {
             du: vec![0.0; n],
             ui: vec![0.0; n],
             target: vec![0.0; n],
+            phi_d: vec![0.0; 3 * n + 1],
             a_hat: vec![0.0; m * n],
             y: vec![0.0; m],
             s: vec![0.0; m * m],
@@ -114,6 +116,20 @@ impl Learner {
     /// Summaries of the local controllers (effective sample size, σ, τ).
     pub fn local_summaries(&self) -> Vec<crate::local::LocalSummary> {
         self.locals.summaries()
+    }
+    /// The forward model (the partition), once the warm-up is over.
+    pub fn forward_model(&self) -> Option<&ForwardModel> {
+        self.forward.as_ref()
+    }
+    /// `Â = ∂ẍ/∂u` at `(q, q̇)` from the local dynamics regressions of the active receptive
+    /// fields (m×n row-major into `a`); `false` without support or before the warm-up ends.
+    pub fn input_gain(&mut self, q: &[f64], qd: &[f64], _u: &[f64], a: &mut [f64]) -> Result<bool> {
+        let (n, m) = (self.n, self.m);
+        let Some(f) = self.forward.as_mut() else {
+            return Ok(false);
+        };
+        f.activations(q, qd, self.cfg.activation_cutoff, &mut self.ws.acts)?;
+        Ok(step::blended_gain(&self.locals, &self.ws.acts, n, m, a))
     }
     /// Local controllers with enough data to act.
     pub fn n_trained(&self) -> usize {
@@ -223,6 +239,7 @@ impl Learner {
             vs,
             &torque,
             acc,
+            self.cfg.forward_uses_q,
         )?);
         for k in 1..warm.len() {
             self.learn_ready(&warm[k - 1], &warm[k])?;

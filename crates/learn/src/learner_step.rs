@@ -134,15 +134,13 @@ impl Learner {
             let cap = self.cfg.exploration_cap;
             if self.cfg.exploration == ExplorationKind::NullSpace {
                 // z ~ N(0, σ² I) projected onto the null space of Â: z − Âᵀ (Â Âᵀ)⁻¹ Â z.
-                let fwd = self.forward.as_mut().expect("models exist");
+                let known = blended_gain(&self.locals, &self.ws.acts, n, m, &mut self.ws.a_hat);
                 let ws = &mut self.ws;
                 for z in ws.du.iter_mut() {
                     let s: f64 = StandardNormal.sample(rng);
                     *z = sigma * s;
                 }
-                if fwd.input_gain(q, qd, u, &mut ws.a_hat)?
-                    && project_null(&ws.a_hat, &mut ws.du, m, &mut ws.y, &mut ws.s)
-                {
+                if known && project_null(&ws.a_hat, &mut ws.du, m, &mut ws.y, &mut ws.s) {
                     for (v, z) in u.iter_mut().zip(&ws.du) {
                         *v += z;
                     }
@@ -193,6 +191,7 @@ impl Learner {
                         copied_from,
                         init,
                         n,
+                        m,
                         p,
                         &self.cfg.rwr,
                         self.cfg.min_ess,
@@ -212,13 +211,21 @@ impl Learner {
             };
         }
         self.ws.u0 = u0;
+        // Hindsight sample φ = [ẍ_measured, q̇, (q − c), 1] → u (or u − u0), weighted by each
+        // RF's activation.
+        let phi = &mut self.ws.phi;
+        phi[..m].copy_from_slice(cur.xdd.as_slice());
+        phi[m..m + n].copy_from_slice(qd);
+        let last = phi.len() - 1;
+        phi[last] = 1.0;
+        let fwd = self.forward.as_mut().expect("models exist");
+        fwd.activations(q, qd, self.cfg.activation_cutoff, &mut self.ws.acts)?;
         let full: f64 = self.ws.du.iter().map(|v| v * v).sum();
         let r = match self.cfg.cost {
             _ if !self.cfg.reward_weighting => 0.0,
             CostKind::Full => full,
             CostKind::NullSpace => {
-                let fwd = self.forward.as_mut().expect("models exist");
-                if fwd.input_gain(q, qd, u, &mut self.ws.a_hat)? {
+                if blended_gain(&self.locals, &self.ws.acts, n, m, &mut self.ws.a_hat) {
                     null_space_cost(
                         &self.ws.a_hat,
                         &self.ws.du,
@@ -232,19 +239,21 @@ impl Learner {
                 }
             }
         };
-        // Hindsight sample φ = [ẍ_measured, q̇, (q − c), 1] → u (or u − u0), weighted by each
-        // RF's activation.
-        let phi = &mut self.ws.phi;
-        phi[..m].copy_from_slice(cur.xdd.as_slice());
-        phi[m..m + n].copy_from_slice(qd);
-        let last = phi.len() - 1;
-        phi[last] = 1.0;
-        let fwd = self.forward.as_mut().expect("models exist");
-        fwd.activations(q, qd, self.cfg.activation_cutoff, &mut self.ws.acts)?;
+        // Features of the local dynamics regression: [u, q̇, q − c, 1] → ẍ.
+        let phi_d = &mut self.ws.phi_d;
+        phi_d[..n].copy_from_slice(u);
+        phi_d[n..2 * n].copy_from_slice(qd);
+        phi_d[3 * n] = 1.0;
         for a in &self.ws.acts {
             let Some(local) = self.locals.map.get_mut(&a.id) else {
                 continue;
             };
+            for i in 0..n {
+                phi_d[2 * n + i] = q[i] - local.center[i];
+            }
+            local
+                .dynamics
+                .observe(phi_d, cur.xdd.as_slice(), 0.0, a.w)?;
             if self.cfg.position_features {
                 for i in 0..n {
                     phi[m + n + i] = q[i] - local.center[i];
@@ -254,6 +263,9 @@ impl Learner {
             local.pending += 1;
             if local.pending >= self.cfg.update_every {
                 local.pending = 0;
+                if local.dynamics.update().is_ok() {
+                    local.dynamics_updates += 1;
+                }
                 match local.rwr.update() {
                     Ok(info) => {
                         local.ess = info.ess;
@@ -378,5 +390,38 @@ fn cholesky(s: &mut [f64], m: usize) -> bool {
             s[i * m + k] = v / d;
         }
     }
+    true
+}
+
+/// `Â = Σ w_i Â_i / Σ w_i` (m×n row-major) over the active receptive fields whose local dynamics
+/// regression has been fitted; `false` if there is none.
+pub(crate) fn blended_gain(
+    locals: &crate::local::LocalControllers,
+    acts: &[lwpr::Activation],
+    n: usize,
+    m: usize,
+    a: &mut [f64],
+) -> bool {
+    a.fill(0.0);
+    let mut sum_w = 0.0;
+    for act in acts {
+        let Some(local) = locals.map.get(&act.id) else {
+            continue;
+        };
+        if local.dynamics_updates == 0 {
+            continue;
+        }
+        let theta = local.dynamics.theta();
+        for k in 0..m {
+            for j in 0..n {
+                a[k * n + j] += act.w * theta[(j, k)];
+            }
+        }
+        sum_w += act.w;
+    }
+    if sum_w <= 0.0 {
+        return false;
+    }
+    a.iter_mut().for_each(|v| *v /= sum_w);
     true
 }

@@ -11,6 +11,11 @@ use std::collections::BTreeMap;
 #[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct Local {
     pub rwr: OnlineRwr,
+    /// Local linear dynamics `ẍ ≈ [uᵀ, q̇ᵀ, (q − c)ᵀ, 1] Θ` by activation-weighted least squares
+    /// (a plain weighted regression: fixed `τ`, zero cost); its `u` rows give `Â = ∂ẍ/∂u`.
+    pub dynamics: OnlineRwr,
+    /// M-steps of the dynamics regression done.
+    pub dynamics_updates: u64,
     /// Centre of its receptive field in `(q, q̇)`.
     pub center: Vec<f64>,
     /// Samples since the last M-step.
@@ -30,7 +35,7 @@ pub struct LocalControllers {
 impl LocalControllers {
     /// A controller for a new receptive field: `θ` copied from `source` if given and trained,
     /// else from the trained controller with the nearest centre, else the constant command
-    /// `u_init` (zero when empty; `d` actions, `p` features).
+    /// `u_init` (zero when empty; `d` actions, `p` features, `m` task dimensions).
     pub fn add(
         &mut self,
         id: RfId,
@@ -38,6 +43,7 @@ impl LocalControllers {
         source: Option<RfId>,
         u_init: &[f64],
         d: usize,
+        m: usize,
         p: usize,
         cfg: &RwrConfig,
         min_ess: f64,
@@ -66,11 +72,24 @@ impl LocalControllers {
             sigma_init: sigma.max(cfg.sigma_min).max(f64::MIN_POSITIVE),
             ..cfg.clone()
         };
-        let rwr = OnlineRwr::with_theta(theta, cfg)?;
+        let rwr = OnlineRwr::with_theta(theta, cfg.clone())?;
+        let dyn_cfg = RwrConfig {
+            adapt_tau: false,
+            update_sigma: false,
+            tau_init: 1.0,
+            ridge: 1e-6,
+            min_ess: 0.0,
+            tau_max: None,
+            ridge_to_previous: false,
+            ..cfg
+        };
+        let dynamics = OnlineRwr::new(3 * d + 1, m, dyn_cfg)?;
         self.map.insert(
             id,
             Local {
                 rwr,
+                dynamics,
+                dynamics_updates: 0,
                 center,
                 pending: 0,
                 updates: 0,
