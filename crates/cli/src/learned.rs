@@ -166,8 +166,20 @@ pub fn train_learner(
     Ok((learner, summary))
 }
 
-/// The metrics of one evaluation as JSON (the keys of issue 6).
+/// Whether an evaluation measured anything: one that diverged during its warm-up period has no
+/// evaluated step, and the library then reports zeros, which are not measurements.
+pub fn measured(e: &EvalResult) -> bool {
+    !(e.diverged && e.tracking_rms_mm == 0.0)
+}
+
+/// The metrics of one evaluation as JSON (the keys of issue 6). A run that diverged during the
+/// warm-up has only `"diverged": true` and `"evaluated": false` — no invented numbers; one that
+/// diverged later has the metrics of the steps before.
 pub fn eval_json(e: &EvalResult) -> Value {
+    if !measured(e) {
+        return json!({"diverged": true, "evaluated": false,
+                      "max_command_step_analytical": e.max_command_step_analytical});
+    }
     json!({
         "tracking_rms_mm": e.tracking_rms_mm,
         "tracking_max_mm": e.tracking_max_mm,
@@ -177,18 +189,23 @@ pub fn eval_json(e: &EvalResult) -> Value {
         "max_command_step_eval": e.max_command_step,
         "max_command_step_analytical": e.max_command_step_analytical,
         "diverged": e.diverged,
+        "evaluated": true,
     })
 }
 
-/// `[{sim_minutes, tracking_rms_mm, command_nmse}, ...]`; an evaluation at the same simulated
-/// minute as the previous one (the driver's final evaluation after a scheduled one at the end)
-/// is listed once.
+/// `[{sim_minutes, tracking_rms_mm, command_nmse, diverged}, ...]` (the metrics left out where
+/// the evaluation diverged in its warm-up); an evaluation at the same simulated minute as the
+/// previous one (the driver's final evaluation after a scheduled one at the end) is listed once.
 pub fn curve_json(curve: &[(f64, EvalResult)]) -> Value {
     dedup_curve(curve)
         .iter()
         .map(|(t, e)| {
-            json!({"sim_minutes": t, "tracking_rms_mm": e.tracking_rms_mm,
-                   "command_nmse": e.command_nmse})
+            if measured(e) {
+                json!({"sim_minutes": t, "tracking_rms_mm": e.tracking_rms_mm,
+                       "command_nmse": e.command_nmse, "diverged": e.diverged})
+            } else {
+                json!({"sim_minutes": t, "diverged": true})
+            }
         })
         .collect()
 }

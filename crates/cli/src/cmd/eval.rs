@@ -87,7 +87,10 @@ pub fn run(a: Args) -> Result<()> {
         side.sim_training_minutes,
         learner.n_local_models()
     );
-    println!(
+    if !crate::learned::measured(&res) {
+        println!("the evaluation diverged during its warm-up period: no metrics");
+    } else {
+        println!(
         "tracking RMS {:.3} mm (max {:.3}), command nMSE {:.4}, cost ratio {:.3}, fallback share {:.3}, \
          largest command step {:.2} N·m (analytical {:.2}){}",
         res.tracking_rms_mm,
@@ -99,6 +102,7 @@ pub fn run(a: Args) -> Result<()> {
         res.max_command_step_analytical,
         if res.diverged { " — diverged" } else { "" }
     );
+    }
     if let Some(dir) = &a.out {
         write_outputs(dir, &setup, &ev.series, n, &json)?;
         println!("wrote {}", dir.display());

@@ -1,10 +1,23 @@
-//! `osrl reproduce`: runs the experiments of DESIGN.md §5 and writes one report folder
-//! (`index.html`, `results.json`, figures, CSV). Experiments whose parts are not built yet are
-//! listed in `results.json` with `"status": "not_implemented"` and a reason — never faked.
+//! `osrl reproduce`: runs experiments E1–E7 of DESIGN.md §5 and writes one report folder:
+//! `index.html` (self-contained, inline SVG), `results.json`, every figure as SVG and PNG, time
+//! series as CSV, and the seed-0 learned controllers in `models/` (for `osrl eval`). Sizes come
+//! from [`sizes::Sizes`] (full or `--quick`); training runs go in parallel on all cores.
 
-use crate::cmd::{simulate, toy};
-use anyhow::{Context, Result};
-use serde_json::{json, Value};
+mod analytical;
+mod compare;
+mod figures;
+mod jobs;
+mod learned_exp;
+mod report;
+mod sizes;
+
+use crate::cmd::toy;
+use crate::learned::Setup;
+use crate::progress;
+use anyhow::{bail, Context, Result};
+use indicatif::MultiProgress;
+use osrl_control::{Law, Run, TrajectoryConfig};
+use serde_json::{json, Map, Value};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -13,12 +26,49 @@ pub struct Args {
     /// Report directory.
     #[arg(long, default_value = "report")]
     pub out: PathBuf,
-    /// Small sizes (for CI).
+    /// Small sizes (for CI: a few simulated minutes of training, under 3 minutes on 2 cores).
     #[arg(long)]
     pub quick: bool,
-    /// Seeds for the seeded experiments (default 30, 5 with --quick).
+    /// Training seeds of the learned controller per robot (default 3, 2 with --quick).
     #[arg(long)]
     pub seeds: Option<u64>,
+}
+
+/// A figure of the report: SVG path relative to the report folder and its caption.
+pub struct Fig {
+    pub file: String,
+    pub caption: String,
+}
+
+impl Fig {
+    pub fn new(file: String, caption: String) -> Self {
+        Self { file, caption }
+    }
+}
+
+/// Everything the experiments' assembly reads.
+pub struct Ctx<'a> {
+    pub out: &'a Path,
+    pub sizes: &'a sizes::Sizes,
+    pub setups: &'a [(&'static str, Setup)],
+    pub jobs: &'a [jobs::JobResult],
+    pub cases: &'a [analytical::Case],
+    pub runs: &'a [(Value, Run)],
+}
+
+impl Ctx<'_> {
+    /// The analytical run of `robot` with the model error `error_key` and `law`.
+    pub fn analytical(&self, robot: &str, error_key: &str, law: Law) -> Option<(&Value, &Run)> {
+        self.cases
+            .iter()
+            .zip(self.runs)
+            .find(|(c, _)| c.robot == robot && c.error_key == error_key && c.law == law)
+            .map(|(_, (v, r))| (v, r))
+    }
+    /// Control steps per trajectory period.
+    pub fn per_period(&self, setup: &Setup) -> usize {
+        (setup.traj.period() / osrl_dynamics::SimConfig::default().control_period).round() as usize
+    }
 }
 
 fn read_json(p: &Path) -> Result<Value> {
@@ -26,141 +76,107 @@ fn read_json(p: &Path) -> Result<Value> {
     serde_json::from_str(&text).with_context(|| format!("parsing {}", p.display()))
 }
 
-/// One analytical run of `osrl simulate` into `dir`; returns its metrics.
-fn simulate_into(
-    dir: &Path,
-    robot: &str,
-    law: &str,
-    seconds: f64,
-    model_error: Option<&str>,
-) -> Result<Value> {
-    simulate::run(simulate::Args {
-        robot: Some(robot.into()),
-        controller: Some(law.into()),
-        metric: None,
-        trajectory: Some("figure8".into()),
-        seconds: Some(seconds),
-        config: None,
-        model_error: model_error.map(Into::into),
-        out: Some(dir.to_path_buf()),
-        json: false,
-    })?;
-    read_json(&dir.join("metrics.json"))
-}
-
 pub fn run(a: Args) -> Result<()> {
     let wall = Instant::now();
     let out = &a.out;
     std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
-    let seeds = a.seeds.unwrap_or(if a.quick { 5 } else { 30 });
-    let seconds = if a.quick { 8.0 } else { 12.0 };
-    let mut figures: Vec<(String, String)> = Vec::new();
+    let mut sizes = if a.quick {
+        sizes::Sizes::quick()
+    } else {
+        sizes::Sizes::full()
+    };
+    if let Some(s) = a.seeds {
+        if s == 0 {
+            bail!("--seeds must be at least 1");
+        }
+        sizes.learned_seeds = s;
+    }
+    let multi = MultiProgress::new();
+    let mut figs = Vec::new();
     // E1: Fig. 1, adaptive vs fixed reward transformation.
-    eprintln!("E1: RWR toy problem (Fig. 1), {seeds} seeds");
+    let _ = multi.println(format!(
+        "E1: RWR toy problem (Fig. 1), {} seeds",
+        sizes.toy_seeds
+    ));
     let e1_dir = out.join("E1");
     toy::run(toy::Args {
-        seeds: Some(seeds),
+        seeds: Some(sizes.toy_seeds),
         out: e1_dir.clone(),
         json: false,
         config: None,
     })?;
     let e1 = read_json(&e1_dir.join("toy.json"))?;
-    figures.push(("E1/fig1_toy.svg".into(), "E1 (paper Fig. 1): transformed reward and policy mean over EM iterations, fixed vs adaptive τ.".into()));
-    figures.push((
-        "E1/toy_iterations.svg".into(),
-        "E1: EM iterations to converge vs initial τ (median, quartiles), adaptive vs fixed.".into(),
+    figs.push(Fig::new("E1/fig1_toy.svg".into(), "E1 (paper Fig. 1): transformed reward and policy mean over EM iterations, fixed vs adaptive τ.".into()));
+    figs.push(Fig::new("E1/toy_iterations.svg".into(), "E1 (paper Fig. 1): EM iterations to converge vs initial τ (median, quartiles), adaptive vs fixed.".into()));
+    // E2 and the analytical half of E7.
+    let cases = analytical::cases(out, sizes.payload_kg)?;
+    let bar = progress::job_bar(Some(&multi), "analytical E2/E7", cases.len() as u64);
+    let runs = analytical::run_all(&cases, sizes.analytical_seconds, &bar)?;
+    bar.finish();
+    let mut e2 = Map::new();
+    for (c, (v, _)) in cases
+        .iter()
+        .zip(&runs)
+        .filter(|(c, _)| c.error_key == "none")
+    {
+        let law = format!("{:?}", c.law).to_lowercase();
+        e2.insert(format!("{}_{law}", c.robot), v.clone());
+        figs.push(Fig::new(
+            format!("E2/{}_{law}/path.svg", c.robot),
+            format!("E2 (baseline): {}, analytical {law} with the true model — desired vs actual figure-8 and the error over time.", c.robot),
+        ));
+    }
+    // E3–E7: the training runs, all in parallel.
+    let setups: Vec<(&'static str, Setup)> = ["planar3", "sarcos7"]
+        .into_iter()
+        .map(|r| Ok((r, Setup::for_robot(r, TrajectoryConfig::default())?)))
+        .collect::<Result<_>>()?;
+    let plan = jobs::plan(&sizes);
+    let _ = multi.println(format!(
+        "E3–E7: {} training runs (planar3 {} min, sarcos7 {} min simulated) on {} threads",
+        plan.len(),
+        sizes.planar3.minutes,
+        sizes.sarcos7.minutes,
+        rayon::current_num_threads()
     ));
-    // E2: analytical OSC with the true model.
-    let mut e2 = serde_json::Map::new();
-    for robot in ["planar3", "sarcos7"] {
-        for law in ["eq7", "eq4"] {
-            eprintln!("E2: {robot} {law}");
-            let dir = out.join("E2").join(format!("{robot}_{law}"));
-            e2.insert(
-                format!("{robot}_{law}"),
-                simulate_into(&dir, robot, law, seconds, None)?,
-            );
-            figures.push((format!("E2/{robot}_{law}/path.svg"), format!("E2 (baseline): {robot}, analytical {law} with the true model, desired vs actual figure-8 and the error over time.")));
+    let results = jobs::run_all(&plan, &setups, &sizes, &multi, &out.join("models"));
+    for r in &results {
+        if let Err(e) = &r.outcome {
+            eprintln!("training run {:?} failed: {e}", r.job);
         }
     }
-    // E7, analytical half: eq. 7 with a wrong model.
-    let errors = [
-        ("mass_x0.7", "mass=0.7"),
-        ("mass_x1.3", "mass=1.3"),
-        ("com_2cm", "com=0.02"),
-        ("no_friction", "friction=off"),
-        ("payload_0.5kg", "payload=0.5"),
-    ];
-    let mut e7 = serde_json::Map::new();
-    for robot in ["planar3", "sarcos7"] {
-        let mut rows = serde_json::Map::new();
-        for (name, spec) in errors {
-            eprintln!("E7: {robot} eq7 with {spec}");
-            let dir = out.join("E7").join(format!("{robot}_{name}"));
-            rows.insert(
-                name.into(),
-                simulate_into(&dir, robot, "eq7", seconds, Some(spec))?,
-            );
-        }
-        e7.insert(robot.into(), Value::Object(rows));
-    }
-    let missing = |what: &str| json!({"status": "not_implemented", "reason": what});
-    let learned = "the learned controller's training/evaluation commands (issue 6) are not wired into reproduce yet";
+    let ctx = Ctx {
+        out,
+        sizes: &sizes,
+        setups: &setups,
+        jobs: &results,
+        cases: &cases,
+        runs: &runs,
+    };
+    let (e3, e4, e5) = learned_exp::e3_e4_e5(&ctx, &mut figs)?;
+    let e6 = compare::e6(&ctx, &mut figs)?;
+    let e7 = compare::e7(&ctx)?;
     let results = json!({
-        "E1": e1,
-        "E2": Value::Object(e2),
-        "E3": missing(learned),
-        "E4": missing(learned),
-        "E5": missing(learned),
-        "E6": missing(learned),
-        "E7": {"analytical_wrong_model": Value::Object(e7), "learned": missing(learned)},
-        "config": {"quick": a.quick, "seconds": seconds},
-        "seeds": (0..seeds).collect::<Vec<_>>(),
+        "E1": e1, "E2": Value::Object(e2), "E3": e3, "E4": e4, "E5": e5, "E6": e6, "E7": e7,
+        "config": {
+            "quick": a.quick,
+            "sizes": sizes,
+            "threads": rayon::current_num_threads(),
+            "learner_defaults": osrl_learn::LearnerConfig::default(),
+            "train_defaults": osrl_learn::train::TrainConfig::default(),
+        },
+        "seeds": (0..sizes.learned_seeds).collect::<Vec<_>>(),
         "wall_seconds": wall.elapsed().as_secs_f64(),
     });
     std::fs::write(
         out.join("results.json"),
         serde_json::to_string_pretty(&results)?,
     )?;
-    write_index(out, &results, &figures)?;
-    eprintln!("report: {}", out.join("index.html").display());
+    report::write(out, &results, &figs)?;
+    eprintln!(
+        "report: {} ({:.0} s)",
+        out.join("index.html").display(),
+        wall.elapsed().as_secs_f64()
+    );
     Ok(())
-}
-
-/// A self-contained page: every figure inline (SVG), one caption each, and the numbers.
-fn write_index(out: &Path, results: &Value, figures: &[(String, String)]) -> Result<()> {
-    let mut html = String::from("<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>osrl report</title>\
-        <style>body{font-family:sans-serif;max-width:1100px;margin:auto}figure{margin:2em 0}svg{max-width:100%;height:auto}pre{background:#f4f4f4;padding:1em;overflow:auto}</style></head><body>\n\
-        <h1>osrl — Reinforcement Learning for Operational Space Control</h1>\n\
-        <p>Experiments of DESIGN.md §5. Sections marked <em>not implemented</em> are not built yet.</p>\n");
-    for (file, caption) in figures {
-        let svg =
-            std::fs::read_to_string(out.join(file)).with_context(|| format!("reading {file}"))?;
-        let svg = svg.trim_start_matches(|c| c != '<');
-        let svg = svg
-            .strip_prefix("<?xml")
-            .map_or(svg, |s| &s[s.find("?>").map_or(0, |i| i + 2)..]);
-        html.push_str(&format!(
-            "<figure>{svg}<figcaption>{}</figcaption></figure>\n",
-            escape(caption)
-        ));
-    }
-    for key in ["E3", "E4", "E5", "E6"] {
-        html.push_str(&format!(
-            "<h2>{key}</h2><p><em>not implemented</em>: {}</p>\n",
-            escape(results[key]["reason"].as_str().unwrap_or(""))
-        ));
-    }
-    html.push_str(&format!(
-        "<h2>results.json</h2><pre>{}</pre>\n</body></html>\n",
-        escape(&serde_json::to_string_pretty(results)?)
-    ));
-    std::fs::write(out.join("index.html"), html)?;
-    Ok(())
-}
-
-fn escape(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
 }

@@ -8,7 +8,7 @@
 //! the trajectory default to the model's (its sidecar), a model error's payload goes on the
 //! simulated robot (the other errors concern an analytical model, which it does not have).
 
-mod output;
+pub mod output;
 
 use crate::config::Config;
 use crate::learned::{load_model, LearnedController};

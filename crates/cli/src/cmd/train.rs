@@ -109,7 +109,10 @@ pub fn run(a: Args) -> Result<()> {
         summary.episodes,
         summary.aborted_episodes
     );
-    println!(
+    if !crate::learned::measured(&last) {
+        println!("the evaluation diverged during its warm-up period: no metrics");
+    } else {
+        println!(
         "final evaluation: tracking RMS {:.3} mm (max {:.3}), command nMSE {:.4}, cost ratio {:.3}, fallback share {:.3}{}",
         last.tracking_rms_mm,
         last.tracking_max_mm,
@@ -118,6 +121,7 @@ pub fn run(a: Args) -> Result<()> {
         last.fallback_share,
         if last.diverged { " — diverged" } else { "" }
     );
+    }
     println!(
         "largest command step during on-policy learning {:.2} N·m (analytical on the path {:.2})",
         summary.max_command_step, last.max_command_step_analytical

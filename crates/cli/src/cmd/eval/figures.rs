@@ -30,6 +30,9 @@ pub fn last_cycle(len: usize, per_period: usize) -> (usize, usize) {
 /// `t, <axis>_d…, <axis>…, error_mm, q0…, u0…, u_star0…` one row per control step.
 pub fn write_csv(path: &Path, es: &EvalSeries, n: usize, axis_names: &[&str]) -> Result<()> {
     let m = axis_names.len();
+    if let Some(dir) = path.parent() {
+        std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    }
     let mut w = std::io::BufWriter::new(
         std::fs::File::create(path).with_context(|| format!("creating {}", path.display()))?,
     );

@@ -1,0 +1,53 @@
+#!/usr/bin/env python3
+"""Checks an `osrl reproduce` report folder: results.json has E1..E7, config, seeds and
+wall_seconds; every number outside `config` is finite (serde_json writes NaN/inf as null, so no null is allowed);
+no experiment reports a failed run; index.html inlines every figure; the PNGs exist."""
+import json, math, pathlib, sys
+
+out = pathlib.Path(sys.argv[1])
+r = json.loads((out / "results.json").read_text())
+errors = []
+
+def walk(v, path):
+    if v is None:
+        errors.append(f"{path}: null (a NaN/inf or a missing number)")
+    elif isinstance(v, float) and not math.isfinite(v):
+        errors.append(f"{path}: {v}")
+    elif isinstance(v, dict):
+        if v.get("status") == "failed":
+            errors.append(f"{path}: failed: {v.get('errors')}")
+        for k, x in v.items():
+            walk(x, f"{path}.{k}")
+    elif isinstance(v, list):
+        for i, x in enumerate(v):
+            walk(x, f"{path}[{i}]")
+
+for key in [f"E{i}" for i in range(1, 8)] + ["config", "seeds", "wall_seconds"]:
+    if key not in r:
+        errors.append(f"missing {key}")
+    elif key.startswith("E") and not r[key]:
+        errors.append(f"{key} is empty")
+# `config` holds settings, where null means "unset" (an Option); everything else is measured.
+for key, v in r.items():
+    if key != "config":
+        walk(v, key)
+for robot in ["planar3", "sarcos7"]:
+    for key in ["E3", "E4", "E5", "E6", "E7"]:
+        if robot not in r.get(key, {}):
+            errors.append(f"{key} has no {robot}")
+    t = r.get("E3", {}).get(robot, {}).get("tracking_rms_mm", {})
+    if "mean" not in t and t.get("status") != "diverged":
+        errors.append(f"E3.{robot}: no tracking error")
+html = (out / "index.html").read_text()
+svgs = sorted(out.glob("E*/**/*.svg"))
+if html.count("<svg") < 10 or html.count("<figcaption>") != html.count("<svg"):
+    errors.append(f"index.html: {html.count('<svg')} inline SVGs, {html.count('<figcaption>')} captions")
+for s in svgs:
+    if not s.with_suffix(".png").exists():
+        errors.append(f"{s} has no PNG")
+if errors:
+    print("report check failed:\n  " + "\n  ".join(errors[:40]))
+    sys.exit(1)
+n_div = json.dumps(r).count('"diverged": true')
+print(f"report check: E1..E7 present, all numbers finite, {html.count('<svg')} figures inline, "
+      f"{len(svgs)} SVG+PNG pairs, {n_div} diverged evaluations reported, wall {r['wall_seconds']:.0f} s")
