@@ -3,28 +3,9 @@
 
 use osrl_control::{Law, MetricKind, Osc, OscConfig, TaskController, TrajectoryConfig};
 use osrl_dynamics::{robots, Robot, SimConfig, SimRobot};
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicUsize, Ordering};
-
-struct Counting;
-static ALLOCS: AtomicUsize = AtomicUsize::new(0);
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, l: Layout) -> *mut u8 {
-        ALLOCS.fetch_add(1, Ordering::SeqCst);
-        unsafe { System.alloc(l) }
-    }
-    unsafe fn dealloc(&self, p: *mut u8, l: Layout) {
-        unsafe { System.dealloc(p, l) }
-    }
-    unsafe fn realloc(&self, p: *mut u8, l: Layout, n: usize) -> *mut u8 {
-        ALLOCS.fetch_add(1, Ordering::SeqCst);
-        unsafe { System.realloc(p, l, n) }
-    }
-}
 
 #[global_allocator]
-static A: Counting = Counting;
+static GLOBAL: osrl_testkit::Counting = osrl_testkit::Counting;
 
 #[test]
 fn commands_do_not_allocate() {
@@ -68,13 +49,13 @@ fn commands_do_not_allocate() {
             let m = model.task_dim();
             let target = traj.sample(1.3);
             osc.command(&meas, &target, &mut u).unwrap(); // warm-up
-            let before = ALLOCS.load(Ordering::SeqCst);
+            let before = osrl_testkit::allocations();
             for _ in 0..100 {
                 osc.command(&meas, &target, &mut u).unwrap();
                 osc.nominal(&q, &qd, &mut u0).unwrap();
                 osc.solve(&q, &qd, &xr[..m], &u0, &mut u).unwrap();
             }
-            let after = ALLOCS.load(Ordering::SeqCst);
+            let after = osrl_testkit::allocations();
             assert_eq!(
                 after - before,
                 0,

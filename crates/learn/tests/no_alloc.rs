@@ -1,28 +1,9 @@
 //! A command of the learned controller does not allocate.
 
 mod common;
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicUsize, Ordering};
-
-struct Counting;
-static ALLOCS: AtomicUsize = AtomicUsize::new(0);
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, l: Layout) -> *mut u8 {
-        ALLOCS.fetch_add(1, Ordering::SeqCst);
-        unsafe { System.alloc(l) }
-    }
-    unsafe fn dealloc(&self, p: *mut u8, l: Layout) {
-        unsafe { System.dealloc(p, l) }
-    }
-    unsafe fn realloc(&self, p: *mut u8, l: Layout, n: usize) -> *mut u8 {
-        ALLOCS.fetch_add(1, Ordering::SeqCst);
-        unsafe { System.realloc(p, l, n) }
-    }
-}
 
 #[global_allocator]
-static GLOBAL: Counting = Counting;
+static GLOBAL: osrl_testkit::Counting = osrl_testkit::Counting;
 
 #[test]
 fn learned_commands_do_not_allocate() {
@@ -36,7 +17,7 @@ fn learned_commands_do_not_allocate() {
     learner
         .command(&q, &qd, &[0.1, 0.2], Some(&mut rng), &mut u)
         .unwrap();
-    let before = ALLOCS.load(Ordering::SeqCst);
+    let before = osrl_testkit::allocations();
     for k in 0..100 {
         let x = 0.01 * k as f64;
         learner
@@ -46,5 +27,5 @@ fn learned_commands_do_not_allocate() {
             .command::<rand_chacha::ChaCha8Rng>(&q, &qd, &[x, x], None, &mut u)
             .unwrap();
     }
-    assert_eq!(ALLOCS.load(Ordering::SeqCst) - before, 0);
+    assert_eq!(osrl_testkit::allocations() - before, 0);
 }

@@ -3,28 +3,8 @@
 
 mod common;
 
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicUsize, Ordering};
-
-struct Counting;
-static ALLOCS: AtomicUsize = AtomicUsize::new(0);
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, l: Layout) -> *mut u8 {
-        ALLOCS.fetch_add(1, Ordering::SeqCst);
-        unsafe { System.alloc(l) }
-    }
-    unsafe fn dealloc(&self, p: *mut u8, l: Layout) {
-        unsafe { System.dealloc(p, l) }
-    }
-    unsafe fn realloc(&self, p: *mut u8, l: Layout, n: usize) -> *mut u8 {
-        ALLOCS.fetch_add(1, Ordering::SeqCst);
-        unsafe { System.realloc(p, l, n) }
-    }
-}
-
 #[global_allocator]
-static GLOBAL: Counting = Counting;
+static GLOBAL: osrl_testkit::Counting = osrl_testkit::Counting;
 
 fn structure(m: &lwpr::Lwpr) -> Vec<Vec<usize>> {
     (0..m.n_sub())
@@ -55,12 +35,12 @@ fn check(cfg: lwpr::LwprConfig, n_in: usize, n_out: usize) {
         let x = sample(&mut rng);
         (0..n_out).for_each(|o| t[o] = f(&x, o));
         let before = structure(&m);
-        let a0 = ALLOCS.load(Ordering::SeqCst);
+        let a0 = osrl_testkit::allocations();
         let info = m.update(&x, &t).unwrap();
         let _ = m.predict(&x, &mut y);
         let _ = m.predict_conf(&x, &mut y, &mut conf);
         let _ = m.predict_jacobian(&x, &mut y, &mut jac);
-        let a1 = ALLOCS.load(Ordering::SeqCst);
+        let a1 = osrl_testkit::allocations();
         m.drain_events().for_each(drop);
         if info.added == 0 && info.pruned == 0 && structure(&m) == before {
             assert_eq!(a1, a0, "allocation in a steady-state update/predict");

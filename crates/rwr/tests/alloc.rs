@@ -4,28 +4,9 @@
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rwr::{OnlineRwr, RwrConfig};
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicUsize, Ordering};
-
-struct Counting;
-static ALLOCS: AtomicUsize = AtomicUsize::new(0);
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        ALLOCS.fetch_add(1, Ordering::SeqCst);
-        unsafe { System.alloc(layout) }
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        unsafe { System.dealloc(ptr, layout) }
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        ALLOCS.fetch_add(1, Ordering::SeqCst);
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-}
 
 #[global_allocator]
-static GLOBAL: Counting = Counting;
+static GLOBAL: osrl_testkit::Counting = osrl_testkit::Counting;
 
 #[test]
 fn online_observe_update_and_sampling_do_not_allocate() {
@@ -38,7 +19,7 @@ fn online_observe_update_and_sampling_do_not_allocate() {
     let mut online = OnlineRwr::new(4, 3, cfg).unwrap();
     let mut rng = ChaCha8Rng::seed_from_u64(0);
     let (mut phi, mut u) = ([0.0, 0.0, 0.0, 1.0], [0.0; 3]);
-    let before = ALLOCS.load(Ordering::SeqCst);
+    let before = osrl_testkit::allocations();
     for k in 0..500 {
         let s = k as f64 * 0.01;
         phi[0] = s.sin();
@@ -53,5 +34,5 @@ fn online_observe_update_and_sampling_do_not_allocate() {
         online.mean_into(&phi, &mut u).unwrap();
     }
     let _ = online.observe(&phi, &u, -1.0, 1.0); // the error path does not allocate either
-    assert_eq!(ALLOCS.load(Ordering::SeqCst) - before, 0);
+    assert_eq!(osrl_testkit::allocations() - before, 0);
 }
