@@ -188,8 +188,9 @@ pub fn arm(setup: &Setup, s: &ArmSeries, per_period: usize, k: usize) -> Result<
         .map(|&(a, b)| {
             let mut p = Panel::new(
                 &format!(
-                    "{}: posture along the figure-8 ({}–{})",
+                    "{}, {}: posture along the figure-8 ({}–{})",
                     model.name(),
+                    s.who,
                     AXES[a],
                     AXES[b]
                 ),

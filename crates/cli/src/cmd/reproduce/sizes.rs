@@ -47,7 +47,7 @@ impl Sizes {
             analytical_seconds: 12.0,
             eval_periods: 2,
             payload_kg: 0.5,
-            arm_instants: 8,
+            arm_instants: 6,
             planar3: RobotSizes {
                 minutes: 30.0,
                 babble_minutes: None,
@@ -70,7 +70,7 @@ impl Sizes {
             analytical_seconds: 8.0,
             eval_periods: 1,
             payload_kg: 0.5,
-            arm_instants: 8,
+            arm_instants: 6,
             planar3: RobotSizes {
                 minutes: 5.0,
                 babble_minutes: Some(2.0),
