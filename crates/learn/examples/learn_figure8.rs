@@ -51,6 +51,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if let Ok(v) = std::env::var("TAUMAX") {
         lcfg.rwr.tau_max = Some(v.parse()?);
     }
+    if let Ok(v) = std::env::var("XSCALE") {
+        lcfg.exploration_scale = v.parse()?;
+    }
     if std::env::var("NSX").is_ok() {
         lcfg.exploration = osrl_learn::ExplorationKind::NullSpace;
     }

@@ -51,6 +51,44 @@ impl<R: Robot + ?Sized> Run<'_, R> {
     fn done(&self) -> bool {
         self.steps >= self.total_steps
     }
+    /// A minimum-jerk joint move from the current posture to `target` over `total` seconds,
+    /// then `settle` seconds holding it, under PD control with the learned gravity compensation;
+    /// stops early when the step count reaches `limit`.
+    #[allow(clippy::too_many_arguments)]
+    fn pd_move(
+        &mut self,
+        target: &[f64],
+        total: f64,
+        settle: f64,
+        limit: u64,
+        evaluate: &mut dyn FnMut(&mut Learner) -> Result<EvalResult>,
+        observe: &mut dyn FnMut(&Progress),
+        progress: &mut Progress,
+    ) -> Result<()> {
+        let n = target.len();
+        let start: Vec<f64> = self.prev.q.as_slice().to_vec();
+        let (mut q_t, mut v_t) = (vec![0.0; n], vec![0.0; n]);
+        for k in 0..((total + settle) / self.dt).round() as u64 {
+            if self.steps >= limit {
+                break;
+            }
+            for i in 0..n {
+                (q_t[i], v_t[i]) = min_jerk(start[i], target[i], k as f64 * self.dt, total);
+            }
+            let prev = self.prev.clone();
+            pd_command(
+                self.learner,
+                &prev,
+                &q_t,
+                &v_t,
+                self.cfg.babble.gain_scale,
+                &mut self.u,
+            )?;
+            self.step(evaluate, observe, progress)?;
+        }
+        Ok(())
+    }
+
     /// Applies `self.u` for one period, learns from the transition, evaluates when due.
     fn step(
         &mut self,
@@ -136,10 +174,8 @@ pub fn train<R: Robot + ?Sized>(
     // Phase 1: motor babbling, random point-to-point moves around home.
     let babble_steps = (cfg.babble.minutes * per_min as f64).round() as u64;
     let mut target = vec![0.0; n];
-    let mut vd = vec![0.0; n];
-    let mut qd_t = vec![0.0; n];
-    while run.steps < babble_steps.min(run.total_steps) {
-        let start: Vec<f64> = run.prev.q.as_slice().to_vec();
+    let babble_end = babble_steps.min(run.total_steps);
+    while run.steps < babble_end {
         for i in 0..n {
             let (lo, hi) = (
                 (q_min[i] + 0.05).max(home[i] - cfg.babble.spread),
@@ -152,25 +188,15 @@ pub fn train<R: Robot + ?Sized>(
             cfg.babble.move_time[0],
             cfg.babble.move_time[1],
         );
-        let k_move = ((total + 0.3) / dt).round() as u64;
-        for k in 0..k_move {
-            if run.steps >= babble_steps.min(run.total_steps) {
-                break;
-            }
-            for i in 0..n {
-                (qd_t[i], vd[i]) = min_jerk(start[i], target[i], k as f64 * dt, total);
-            }
-            let prev = run.prev.clone();
-            pd_command(
-                run.learner,
-                &prev,
-                &qd_t,
-                &vd,
-                cfg.babble.gain_scale,
-                &mut run.u,
-            )?;
-            run.step(evaluate, observe, &mut progress)?;
-        }
+        run.pd_move(
+            &target,
+            total,
+            0.3,
+            babble_end,
+            evaluate,
+            observe,
+            &mut progress,
+        )?;
     }
     // Phase 2: on-policy learning along the task, episodes from home.
     progress.phase = "on-policy";
@@ -188,26 +214,8 @@ pub fn train<R: Robot + ?Sized>(
             .map(|(a, b)| (a - b).abs())
             .fold(0.0, f64::max);
         if off > 0.01 || run.prev.qd.amax() > 0.01 {
-            let start: Vec<f64> = run.prev.q.as_slice().to_vec();
-            let total = 2.0;
-            for k in 0..((total + 1.0) / dt).round() as u64 {
-                if run.done() {
-                    break;
-                }
-                for i in 0..n {
-                    (qd_t[i], vd[i]) = min_jerk(start[i], home[i], k as f64 * dt, total);
-                }
-                let prev = run.prev.clone();
-                pd_command(
-                    run.learner,
-                    &prev,
-                    &qd_t,
-                    &vd,
-                    cfg.babble.gain_scale,
-                    &mut run.u,
-                )?;
-                run.step(evaluate, observe, &mut progress)?;
-            }
+            let limit = run.total_steps;
+            run.pd_move(&home, 2.0, 1.0, limit, evaluate, observe, &mut progress)?;
             last_u = None;
             continue;
         }
