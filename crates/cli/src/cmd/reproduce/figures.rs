@@ -9,6 +9,12 @@ use osrl_learn::eval::{EvalResult, EvalSeries};
 
 const AXES: [&str; 3] = ["x", "y", "z"];
 
+/// One run's learning curve: `(simulated minutes, evaluation)`.
+pub type Curve = Vec<(f64, EvalResult)>;
+
+/// A labelled set of runs' curves (one learner over its seeds).
+pub type Runs<'a> = (&'a str, Vec<Curve>);
+
 /// The two task columns that move most along the desired path (in column order).
 fn plane(x_d: &[f64], m: usize) -> (usize, usize) {
     if m < 2 {
@@ -79,10 +85,7 @@ pub fn tracking(setup: &Setup, learned: &EvalSeries, analytical: &osrl_control::
 
 /// Mean and (min, max) over seeds of `f` at each evaluation of the learning curves, over the
 /// seeds whose evaluation there did not diverge (points where all diverged are left out).
-pub fn spread(
-    curves: &[Vec<(f64, EvalResult)>],
-    f: impl Fn(&EvalResult) -> f64,
-) -> Vec<(f64, f64, f64, f64)> {
+pub fn spread(curves: &[Curve], f: impl Fn(&EvalResult) -> f64) -> Vec<(f64, f64, f64, f64)> {
     let len = curves.iter().map(Vec::len).min().unwrap_or(0);
     (0..len)
         .filter(|&i| curves.iter().any(|c| !c[i].1.diverged))
@@ -110,11 +113,7 @@ fn curve_series(label: &str, s: &[(f64, f64, f64, f64)], color: usize) -> Series
 /// Learning curves of several learners (one colour each, mean over seeds with min–max bars):
 /// tracking error, command nMSE against `u*`, command cost ratio; `reference` draws the
 /// analytical tracking error as a flat line.
-pub fn curves(
-    title: &str,
-    runs: &[(&str, Vec<Vec<(f64, EvalResult)>>)],
-    reference_mm: Option<f64>,
-) -> Figure {
+pub fn curves(title: &str, runs: &[Runs], reference_mm: Option<f64>) -> Figure {
     let mut track = Panel::new("tracking error", "simulated training [min]", "RMS [mm]");
     let mut nmse = Panel::new(
         "command error vs u*",

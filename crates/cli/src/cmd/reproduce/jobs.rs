@@ -166,6 +166,18 @@ pub fn run_all(
                 .expect("setup")
                 .1;
             let outcome = run_one(job, setup, sizes, bar, models_dir).map_err(|e| format!("{e:#}"));
+            if bar.is_hidden() {
+                // No terminal (CI, a log file): one line per finished run instead of the bar.
+                eprintln!("{}: {}", bar.prefix(), match &outcome {
+                    Ok(t) if crate::learned::measured(&t.eval) => format!(
+                        "tracking {:.3} mm, command nMSE {:.3}, {} local models, {:.0} s ({:.1}× real time){}",
+                        t.eval.tracking_rms_mm, t.eval.command_nmse, t.summary.n_local_models,
+                        t.summary.wall_seconds, t.summary.realtime_factor,
+                        if t.eval.diverged { ", diverged" } else { "" }),
+                    Ok(t) => format!("diverged in the evaluation's warm-up, {:.0} s", t.summary.wall_seconds),
+                    Err(e) => format!("failed: {e}"),
+                });
+            }
             bar.finish();
             JobResult {
                 job: job.clone(),
