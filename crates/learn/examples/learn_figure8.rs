@@ -54,6 +54,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if let Ok(v) = std::env::var("XSCALE") {
         lcfg.exploration_scale = v.parse()?;
     }
+    if let Ok(v) = std::env::var("NSCAP") {
+        lcfg.null_space_cap = Some(v.parse()?);
+    }
     if std::env::var("NSX").is_ok() {
         lcfg.exploration = osrl_learn::ExplorationKind::NullSpace;
     }
@@ -65,7 +68,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     let mut learner = Learner::new(model.nq(), model.task_dim(), 0.002, lcfg)?;
     let babble: f64 = std::env::var("BABBLE").map_or(Ok(4.0), |s| s.parse())?;
+    let learn_every: usize = std::env::var("LEARN_EVERY").map_or(Ok(1), |s| s.parse())?;
     let cfg = TrainConfig {
+        learn_every,
         minutes,
         seed,
         eval_every_minutes: 1.0,

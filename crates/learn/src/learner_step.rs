@@ -136,9 +136,10 @@ impl Learner {
                 // z ~ N(0, σ² I) projected onto the null space of Â: z − Âᵀ (Â Âᵀ)⁻¹ Â z.
                 let known = blended_gain(&self.locals, &self.ws.acts, n, m, &mut self.ws.a_hat);
                 let ws = &mut self.ws;
-                for z in ws.du.iter_mut() {
+                let ns_cap = self.cfg.null_space_cap.unwrap_or(f64::INFINITY);
+                for (z, scale) in ws.du.iter_mut().zip(&self.torque_scale) {
                     let s: f64 = StandardNormal.sample(rng);
-                    *z = sigma * s;
+                    *z = sigma.min(ns_cap * scale) * s;
                 }
                 if known && project_null(&ws.a_hat, &mut ws.du, m, &mut ws.y, &mut ws.s) {
                     for (v, z) in u.iter_mut().zip(&ws.du) {
