@@ -166,8 +166,9 @@ pub fn train_learner(
     Ok((learner, summary))
 }
 
-/// Whether an evaluation measured anything: one that diverged during its warm-up period has no
-/// evaluated step, and the library then reports zeros, which are not measurements.
+/// Whether an evaluation measured anything. The library reports, for a run that diverged during
+/// its warm-up period, the metrics of the steps before the divergence (flagged `diverged`); only a
+/// run that failed at its very first step has zeros, which are not measurements.
 pub fn measured(e: &EvalResult) -> bool {
     !(e.diverged && e.tracking_rms_mm == 0.0)
 }

@@ -85,7 +85,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut cfg = cfg;
     if let Ok(v) = std::env::var("KP") {
         let kp: f64 = v.parse()?;
-        cfg.gains = osrl_control::TaskGains { kp, kd: 2.0 * kp.sqrt() };
+        cfg.gains = osrl_control::TaskGains {
+            kp,
+            kd: 2.0 * kp.sqrt(),
+        };
     }
     let mut ev = Evaluator::new(
         model.clone(),

@@ -26,8 +26,9 @@ pub struct EvalResult {
     /// Largest change of the command between consecutive steps (N·m), learned and analytical.
     pub max_command_step: f64,
     pub max_command_step_analytical: f64,
-    /// Whether the run was cut short by a tracking error above 0.2 m (metrics then cover the
-    /// steps before).
+    /// Whether the run was cut short by a tracking error above 0.2 m, or never reached the
+    /// evaluated window; the metrics then cover the steps before (all steps if the window was
+    /// never reached).
     pub diverged: bool,
 }
 
@@ -107,9 +108,7 @@ impl Evaluator {
         let warm = (self.traj.period() / dt).round() as usize;
         let (mut u, mut u_star, mut u0) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
         let mut xdd_ref = vec![0.0; m];
-        let (mut e2, mut emax, mut du2, mut c_l, mut c_s, mut fall, mut count) =
-            (0.0, 0.0f64, 0.0, 0.0, 0.0, 0usize, 0usize);
-        let (mut s1, mut s2) = (vec![0.0; n], vec![0.0; n]);
+        let (mut window, mut all) = (Acc::new(n), Acc::new(n));
         let (mut prev_u, mut prev_us): (Option<Vec<f64>>, Option<Vec<f64>>) = (None, None);
         let (mut step_l, mut step_a) = (0.0f64, 0.0f64);
         let mut diverged = false;
@@ -172,17 +171,11 @@ impl Evaluator {
                 self.series.u_star.extend(&u_star);
                 self.series.q.extend(meas.q.iter());
             }
-            if k >= warm {
-                count += 1;
-                e2 += e * e;
-                emax = emax.max(e);
-                fall += (src == CommandSource::Fallback) as usize;
-                for i in 0..n {
-                    du2 += (u[i] - u_star[i]).powi(2);
-                    c_l += (u[i] - u0[i]).powi(2);
-                    c_s += (u_star[i] - u0[i]).powi(2);
-                    s1[i] += u_star[i];
-                    s2[i] += u_star[i] * u_star[i];
+            // The window of whole periods after the first; `all` covers every step, for runs that
+            // diverge before the window starts.
+            for (acc, on) in [(&mut window, k >= warm), (&mut all, true)] {
+                if on {
+                    acc.add(e, src == CommandSource::Fallback, &u, &u_star, &u0);
                 }
             }
             if e > 0.2 {
@@ -194,20 +187,68 @@ impl Evaluator {
                 break;
             }
         }
-        let c = count.max(1) as f64;
-        let var: f64 = (0..n)
-            .map(|i| s2[i] / c - (s1[i] / c).powi(2))
+        let acc = if window.count > 0 { &window } else { &all };
+        Ok(acc.result(step_l, step_a, diverged || window.count == 0))
+    }
+}
+
+/// Sums of one evaluation window.
+struct Acc {
+    count: usize,
+    e2: f64,
+    emax: f64,
+    du2: f64,
+    c_l: f64,
+    c_s: f64,
+    fall: usize,
+    s1: Vec<f64>,
+    s2: Vec<f64>,
+}
+
+impl Acc {
+    fn new(n: usize) -> Self {
+        Self {
+            count: 0,
+            e2: 0.0,
+            emax: 0.0,
+            du2: 0.0,
+            c_l: 0.0,
+            c_s: 0.0,
+            fall: 0,
+            s1: vec![0.0; n],
+            s2: vec![0.0; n],
+        }
+    }
+
+    fn add(&mut self, e: f64, fallback: bool, u: &[f64], u_star: &[f64], u0: &[f64]) {
+        self.count += 1;
+        self.e2 += e * e;
+        self.emax = self.emax.max(e);
+        self.fall += fallback as usize;
+        for i in 0..u.len() {
+            self.du2 += (u[i] - u_star[i]).powi(2);
+            self.c_l += (u[i] - u0[i]).powi(2);
+            self.c_s += (u_star[i] - u0[i]).powi(2);
+            self.s1[i] += u_star[i];
+            self.s2[i] += u_star[i] * u_star[i];
+        }
+    }
+
+    fn result(&self, step_l: f64, step_a: f64, diverged: bool) -> EvalResult {
+        let c = self.count.max(1) as f64;
+        let var: f64 = (0..self.s1.len())
+            .map(|i| self.s2[i] / c - (self.s1[i] / c).powi(2))
             .sum::<f64>()
             .max(1e-12);
-        Ok(EvalResult {
-            tracking_rms_mm: 1e3 * (e2 / c).sqrt(),
-            tracking_max_mm: 1e3 * emax,
-            command_nmse: du2 / c / var,
-            command_cost_ratio: c_l / c_s.max(1e-12),
-            fallback_share: fall as f64 / c,
+        EvalResult {
+            tracking_rms_mm: 1e3 * (self.e2 / c).sqrt(),
+            tracking_max_mm: 1e3 * self.emax,
+            command_nmse: self.du2 / c / var,
+            command_cost_ratio: self.c_l / self.c_s.max(1e-12),
+            fallback_share: self.fall as f64 / c,
             max_command_step: step_l,
             max_command_step_analytical: step_a,
-            diverged: diverged || count == 0,
-        })
+            diverged,
+        }
     }
 }

@@ -265,14 +265,20 @@ pub fn train<R: Robot + ?Sized>(
         last_u = None;
         progress.max_command_step = max_step;
     }
-    // Final evaluation.
-    let e = evaluate(run.learner)?;
-    run.curve.push((run.minutes(), e.clone()));
-    progress.sim_minutes = run.minutes();
-    progress.eval = Some(e);
-    progress.n_local_models = run.learner.n_local_models();
-    progress.n_trained = run.learner.n_trained();
-    observe(&progress);
+    // Final evaluation, unless the schedule just made one at this very step.
+    if run
+        .curve
+        .last()
+        .is_none_or(|(t, _)| (*t - run.minutes()).abs() > 1e-12)
+    {
+        let e = evaluate(run.learner)?;
+        run.curve.push((run.minutes(), e.clone()));
+        progress.sim_minutes = run.minutes();
+        progress.eval = Some(e);
+        progress.n_local_models = run.learner.n_local_models();
+        progress.n_trained = run.learner.n_trained();
+        observe(&progress);
+    }
     let wall_seconds = wall.elapsed().as_secs_f64();
     Ok(TrainSummary {
         sim_training_minutes: run.minutes(),
