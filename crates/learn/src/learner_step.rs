@@ -290,43 +290,12 @@ pub(crate) fn null_space_cost(
     y: &mut [f64],
     s: &mut [f64],
 ) -> Option<f64> {
-    let n = du.len();
-    for k in 0..m {
-        y[k] = (0..n).map(|j| a[k * n + j] * du[j]).sum();
-        for l in 0..m {
-            s[k * m + l] = (0..n).map(|j| a[k * n + j] * a[l * n + j]).sum();
-        }
+    if !gain_system(a, du, m, y, s) {
+        return None;
     }
-    // In-place Cholesky of the small m×m system, then y ← S⁻¹ y.
-    for k in 0..m {
-        let mut d = s[k * m + k];
-        for j in 0..k {
-            d -= s[k * m + j] * s[k * m + j];
-        }
-        if !(d > 1e-12 * (1.0 + s[0].abs())) {
-            return None;
-        }
-        let d = d.sqrt();
-        s[k * m + k] = d;
-        for i in k + 1..m {
-            let mut v = s[i * m + k];
-            for j in 0..k {
-                v -= s[i * m + j] * s[k * m + j];
-            }
-            s[i * m + k] = v / d;
-        }
-    }
+    // yᵀ S⁻¹ y = ‖L⁻¹ y‖², and y now holds L⁻¹ Â du.
+    let quad: f64 = y[..m].iter().map(|v| v * v).sum();
     let full: f64 = du.iter().map(|v| v * v).sum();
-    // yᵀ S⁻¹ y = ‖L⁻¹ y‖².
-    let mut quad = 0.0;
-    for k in 0..m {
-        let mut v = y[k];
-        for j in 0..k {
-            v -= s[k * m + j] * y[j];
-        }
-        y[k] = v / s[k * m + k];
-        quad += y[k] * y[k];
-    }
     Some((full - quad).max(0.0))
 }
 
@@ -338,24 +307,10 @@ pub(crate) fn project_null(
     y: &mut [f64],
     s: &mut [f64],
 ) -> bool {
-    let n = z.len();
-    for k in 0..m {
-        y[k] = (0..n).map(|j| a[k * n + j] * z[j]).sum();
-        for l in 0..m {
-            s[k * m + l] = (0..n).map(|j| a[k * n + j] * a[l * n + j]).sum();
-        }
-    }
-    if !cholesky(s, m) {
+    if !gain_system(a, z, m, y, s) {
         return false;
     }
-    // y ← S⁻¹ y by forward and back substitution with the factor L (S = L Lᵀ).
-    for k in 0..m {
-        let mut v = y[k];
-        for j in 0..k {
-            v -= s[k * m + j] * y[j];
-        }
-        y[k] = v / s[k * m + k];
-    }
+    // Back substitution: y ← L⁻ᵀ L⁻¹ Â z = S⁻¹ Â z.
     for k in (0..m).rev() {
         let mut v = y[k];
         for j in k + 1..m {
@@ -363,8 +318,32 @@ pub(crate) fn project_null(
         }
         y[k] = v / s[k * m + k];
     }
+    let n = z.len();
     for j in 0..n {
         z[j] -= (0..m).map(|k| a[k * n + j] * y[k]).sum::<f64>();
+    }
+    true
+}
+
+/// Forms `S = Â Âᵀ` (m×m) and `y = Â v`, factors `S = L Lᵀ` in place and sets `y ← L⁻¹ y`;
+/// `false` if `S` is not positive definite.
+fn gain_system(a: &[f64], v: &[f64], m: usize, y: &mut [f64], s: &mut [f64]) -> bool {
+    let n = v.len();
+    for k in 0..m {
+        y[k] = (0..n).map(|j| a[k * n + j] * v[j]).sum();
+        for l in 0..m {
+            s[k * m + l] = (0..n).map(|j| a[k * n + j] * a[l * n + j]).sum();
+        }
+    }
+    if !cholesky(s, m) {
+        return false;
+    }
+    for k in 0..m {
+        let mut w = y[k];
+        for j in 0..k {
+            w -= s[k * m + j] * y[j];
+        }
+        y[k] = w / s[k * m + k];
     }
     true
 }
@@ -425,4 +404,32 @@ pub(crate) fn blended_gain(
     }
     a.iter_mut().for_each(|v| *v /= sum_w);
     true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{null_space_cost, project_null};
+
+    #[test]
+    fn projection_removes_the_task_part_and_the_cost_is_its_complement() {
+        // Â (2×3) and a vector: after the projection Â z = 0, and r_null(du) = ‖P du‖².
+        let a = [1.0, -2.0, 0.5, 0.3, 0.7, -17.0];
+        let du = [0.4, -1.1, 2.0];
+        let (mut y, mut s) = ([0.0; 2], [0.0; 4]);
+        let mut z = du;
+        assert!(project_null(&a, &mut z, 2, &mut y, &mut s));
+        for k in 0..2 {
+            let az: f64 = (0..3).map(|j| a[k * 3 + j] * z[j]).sum();
+            assert!(az.abs() < 1e-12, "Â z = {az}");
+        }
+        let p2: f64 = z.iter().map(|v| v * v).sum();
+        let r = null_space_cost(&a, &du, 2, &mut y, &mut s).unwrap();
+        assert!((r - p2).abs() < 1e-12, "{r} vs {p2}");
+        // A rank-deficient Â is refused, leaving z unchanged.
+        let flat = [1.0, 2.0, 3.0, 2.0, 4.0, 6.0];
+        let mut z2 = du;
+        assert!(!project_null(&flat, &mut z2, 2, &mut y, &mut s));
+        assert_eq!(z2, du);
+        assert!(null_space_cost(&flat, &du, 2, &mut y, &mut s).is_none());
+    }
 }
