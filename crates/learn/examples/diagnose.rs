@@ -28,6 +28,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if let Ok(v) = std::env::var("FORGET") {
         lcfg.rwr.forgetting = v.parse()?;
     }
+    if let Ok(v) = std::env::var("ALPHA") {
+        lcfg.forward.init_alpha = v.parse()?;
+    }
     if std::env::var("NOUPD").is_ok() {
         lcfg.forward.update_d = false;
     }
