@@ -1,23 +1,8 @@
 //! `osrl train`, `osrl eval` and `osrl simulate --controller learned:MODEL` end to end on a tiny
 //! training run: the JSON keys of issue 6, the saved model and its sidecar, one-line errors.
 
-use std::process::Command;
-
-fn osrl(args: &[&str]) -> (bool, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_osrl"))
-        .args(args)
-        .output()
-        .expect("run osrl");
-    (
-        out.status.success(),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
-
-fn last_json(stdout: &str) -> serde_json::Value {
-    serde_json::from_str(stdout.lines().last().expect("a last line")).expect("last line is JSON")
-}
+mod common;
+use common::{last_json, osrl};
 
 #[test]
 fn train_eval_simulate_round_trip() {

@@ -1,23 +1,7 @@
 //! `osrl robot` and `osrl dynamics` end to end: JSON on the last line, one-line errors.
 
-use std::process::Command;
-
-fn osrl(args: &[&str]) -> (bool, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_osrl"))
-        .args(args)
-        .output()
-        .expect("run osrl");
-    (
-        out.status.success(),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
-
-fn last_json(stdout: &str) -> serde_json::Value {
-    serde_json::from_str(stdout.lines().last().expect("a last line"))
-        .expect("the last line is JSON")
-}
+mod common;
+use common::{last_json, osrl};
 
 #[test]
 fn dynamics_json_has_the_documented_keys_and_consistent_values() {
