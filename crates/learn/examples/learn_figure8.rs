@@ -54,6 +54,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if let Ok(v) = std::env::var("XSCALE") {
         lcfg.exploration_scale = v.parse()?;
     }
+    if let Ok(v) = std::env::var("MINESS") {
+        lcfg.min_ess = v.parse()?;
+    }
+    if let Ok(v) = std::env::var("UPDEVERY") {
+        lcfg.update_every = v.parse()?;
+    }
     if let Ok(v) = std::env::var("NSCAP") {
         lcfg.null_space_cap = Some(v.parse()?);
     }
