@@ -2,9 +2,9 @@
 //! simulated robot's.
 
 use crate::error::{ControlError, Result};
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::Matrix3;
 use osrl_dynamics::{Friction, Inertia, Model};
-use rand::{RngExt, SeedableRng};
+use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -87,7 +87,7 @@ impl ModelError {
         let mut ctrl = truth.spec().clone();
         let mut rng = ChaCha8Rng::seed_from_u64(self.seed);
         for l in ctrl.links.iter_mut() {
-            let dir = random_unit(&mut rng);
+            let dir = osrl_dynamics::robots::random_unit_vector(&mut rng);
             let i = l.inertia;
             if i.mass > 0.0 {
                 let s = self.mass_scale;
@@ -104,20 +104,6 @@ impl ModelError {
         }
         ctrl.name = format!("{} ({})", ctrl.name, self);
         Ok((Model::new(sim)?, Model::new(ctrl)?))
-    }
-}
-
-fn random_unit(rng: &mut ChaCha8Rng) -> Vector3<f64> {
-    loop {
-        let v = Vector3::new(
-            rng.random_range(-1.0..1.0),
-            rng.random_range(-1.0..1.0),
-            rng.random_range(-1.0..1.0),
-        );
-        let n = v.norm();
-        if n > 0.1 && n <= 1.0 {
-            return v / n;
-        }
     }
 }
 

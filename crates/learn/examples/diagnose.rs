@@ -111,7 +111,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             .sum::<f64>();
         // Â from the forward model against the true A = J M⁻¹ on the task rows.
         let mut a_hat = vec![0.0; m * n];
-        if learner.input_gain(q, qd, &u, &mut a_hat)? {
+        if learner.input_gain(q, qd, &mut a_hat)? {
             let mass = osrl_dynamics::crba(&model, &mut data, q)?.clone();
             osrl_dynamics::jacobian(&model, &mut data, q)?;
             let minv = mass.try_inverse().unwrap();

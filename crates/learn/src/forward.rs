@@ -3,7 +3,7 @@
 //! receptive fields are the partition the local controllers live on.
 
 use crate::error::Result;
-use lwpr::{Activation, Lwpr, LwprConfig, LwprError, Norm, RfEvent, RfId};
+use lwpr::{Activation, Lwpr, LwprConfig, Norm, RfEvent, RfId};
 use serde::{Deserialize, Serialize};
 
 /// The forward model and the input buffer of its queries.
@@ -15,10 +15,6 @@ pub struct ForwardModel {
     m: usize,
     #[serde(skip)]
     x: Vec<f64>,
-    #[serde(skip)]
-    y: Vec<f64>,
-    #[serde(skip)]
-    jac: Vec<f64>,
 }
 
 impl ForwardModel {
@@ -50,8 +46,6 @@ impl ForwardModel {
             n,
             m,
             x: vec![0.0; 3 * n],
-            y: vec![0.0; m],
-            jac: vec![0.0; 3 * n * m],
         })
     }
 
@@ -91,34 +85,9 @@ impl ForwardModel {
         Ok(())
     }
 
-    /// `Â = ∂ẍ/∂u` (m×n, row-major into `a`) at `(q, q̇, u)`; `false` without support.
-    pub fn input_gain(&mut self, q: &[f64], qd: &[f64], u: &[f64], a: &mut [f64]) -> Result<bool> {
-        let (n, m) = (self.n, self.m);
-        self.load(q, qd, Some(u));
-        self.y.resize(m, 0.0);
-        self.jac.resize(3 * n * m, 0.0);
-        match self
-            .lwpr
-            .predict_jacobian(&self.x, &mut self.y, &mut self.jac)
-        {
-            Ok(_) => {
-                for k in 0..m {
-                    a[k * n..(k + 1) * n]
-                        .copy_from_slice(&self.jac[k * 3 * n + 2 * n..(k + 1) * 3 * n]);
-                }
-                Ok(true)
-            }
-            Err(LwprError::NoActiveRf { .. }) => Ok(false),
-            Err(e) => Err(e.into()),
-        }
-    }
-
     /// Re-creates the skipped query buffers after deserialisation.
     pub(crate) fn restore_buffers(&mut self) {
-        let (n, m) = (self.n, self.m);
-        self.x = vec![0.0; 3 * n];
-        self.y = vec![0.0; m];
-        self.jac = vec![0.0; 3 * n * m];
+        self.x = vec![0.0; 3 * self.n];
     }
 
     /// Centre of a receptive field in `(q, q̇)`.

@@ -123,7 +123,7 @@ impl Learner {
     }
     /// `Â = ∂ẍ/∂u` at `(q, q̇)` from the local dynamics regressions of the active receptive
     /// fields (m×n row-major into `a`); `false` without support or before the warm-up ends.
-    pub fn input_gain(&mut self, q: &[f64], qd: &[f64], _u: &[f64], a: &mut [f64]) -> Result<bool> {
+    pub fn input_gain(&mut self, q: &[f64], qd: &[f64], a: &mut [f64]) -> Result<bool> {
         let (n, m) = (self.n, self.m);
         let Some(f) = self.forward.as_mut() else {
             return Ok(false);

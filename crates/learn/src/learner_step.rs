@@ -63,12 +63,7 @@ impl Learner {
         self.stats.commands += 1;
         let cutoff = self.cfg.activation_cutoff;
         let Some(fwd) = self.forward.as_mut() else {
-            self.stats.fallbacks += 1;
-            let mut u0 = std::mem::take(&mut self.ws.u0);
-            self.nominal(q, qd, &mut u0)?;
-            u.copy_from_slice(&u0);
-            self.ws.u0 = u0;
-            return Ok(CommandSource::Fallback);
+            return self.fallback(q, qd, u);
         };
         // φ = [ẍ_refᵀ, q̇ᵀ, (q − c_i)ᵀ, 1] (eq. 31, with the optional position features).
         let phi = &mut self.ws.phi;
@@ -108,12 +103,7 @@ impl Learner {
             source = CommandSource::Extrapolated;
         }
         if sum_w <= 0.0 {
-            self.stats.fallbacks += 1;
-            let mut u0 = std::mem::take(&mut self.ws.u0);
-            self.nominal(q, qd, &mut u0)?;
-            u.copy_from_slice(&u0);
-            self.ws.u0 = u0;
-            return Ok(CommandSource::Fallback);
+            return self.fallback(q, qd, u);
         }
         if source == CommandSource::Extrapolated {
             self.stats.extrapolations += 1;
@@ -153,6 +143,13 @@ impl Learner {
             }
         }
         Ok(source)
+    }
+
+    /// The nominal `u0` as the command where no trained controller is near (counted).
+    fn fallback(&mut self, q: &[f64], qd: &[f64], u: &mut [f64]) -> Result<CommandSource> {
+        self.stats.fallbacks += 1;
+        self.nominal(q, qd, u)?;
+        Ok(CommandSource::Fallback)
     }
 
     /// Learning from a checked transition once the models exist.

@@ -7,7 +7,9 @@ use nalgebra::{Matrix3, Vector3};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-fn unit(rng: &mut ChaCha8Rng) -> Vector3<f64> {
+/// A random unit vector (uniform direction, by rejection from the unit ball), for random arms
+/// and random model errors.
+pub fn random_unit_vector(rng: &mut ChaCha8Rng) -> Vector3<f64> {
     loop {
         let v = Vector3::new(
             rng.random_range(-1.0..1.0),
@@ -23,7 +25,7 @@ fn unit(rng: &mut ChaCha8Rng) -> Vector3<f64> {
 
 fn rotation(rng: &mut ChaCha8Rng) -> Matrix3<f64> {
     axis_angle(
-        &unit(rng),
+        &random_unit_vector(rng),
         rng.random_range(-std::f64::consts::PI..std::f64::consts::PI),
     )
 }
@@ -43,9 +45,9 @@ pub fn random_arm(n: usize, seed: u64, friction: bool) -> Model {
             } else {
                 rng.random_range(0.1..0.5)
             };
-            let origin = Pose::new(rotation(&mut rng), unit(&mut rng) * len);
+            let origin = Pose::new(rotation(&mut rng), random_unit_vector(&mut rng) * len);
             let mass = rng.random_range(0.3..3.0);
-            let com = unit(&mut rng) * rng.random_range(0.0..0.2);
+            let com = random_unit_vector(&mut rng) * rng.random_range(0.0..0.2);
             // Principal moments a ≤ b + c etc. from a random mass distribution's second moments.
             let s = [
                 rng.random_range(0.001..0.02),
@@ -68,7 +70,7 @@ pub fn random_arm(n: usize, seed: u64, friction: bool) -> Model {
                 name: format!("link{i}"),
                 joint_name: format!("joint{i}"),
                 origin,
-                axis: unit(&mut rng),
+                axis: random_unit_vector(&mut rng),
                 inertia: Inertia::from_com(
                     mass,
                     com,
@@ -82,7 +84,7 @@ pub fn random_arm(n: usize, seed: u64, friction: bool) -> Model {
     Model::new(ModelSpec {
         name: format!("random{n}_{seed}"),
         links,
-        ee_offset: unit(&mut rng) * 0.1,
+        ee_offset: random_unit_vector(&mut rng) * 0.1,
         gravity: GRAVITY,
         task_axes: vec![0, 1, 2],
         q_start: vec![0.0; n],
