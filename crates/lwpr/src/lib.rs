@@ -57,6 +57,7 @@ mod pls;
 mod predict;
 mod rf;
 mod scratch;
+mod simd;
 
 pub use config::{Kernel, LwprConfig, MetricInit, Norm, NormKeyword, PruneRule};
 pub use error::LwprError;

@@ -8,6 +8,7 @@
 
 use crate::params::Params;
 use crate::rf::Pls;
+use crate::simd::{exp_fast, max_abs};
 
 /// Derivative buffers, one entry per metric element.
 #[derive(Clone, Debug, Default)]
@@ -52,6 +53,7 @@ pub(crate) struct MetricAcc {
 /// First and second derivatives of `w` and of the penalty `J2 = (γ/n) Σ D_ij²` with respect to
 /// each free element of `M`, at `dx = x − c` (`pen` = γ/n). Second derivatives only with `meta`.
 #[allow(clippy::too_many_arguments)]
+#[inline(always)]
 pub(crate) fn derivatives(
     diag: bool,
     meta: bool,
@@ -77,26 +79,48 @@ pub(crate) fn derivatives(
         }
         return;
     }
-    for n in 0..nk {
-        ws.mdx[n] = (n..nk).map(|i| m[n * nk + i] * dx[i]).sum();
-    }
+    let (m, d) = (&m[..nk * nk], &d[..nk * nk]);
+    let dx = &dx[..nk];
     for n in 0..nk {
         let mrow = &m[n * nk + n..(n + 1) * nk];
-        let ss: f64 = if meta {
-            mrow.iter().map(|v| v * v).sum()
-        } else {
-            0.0
-        };
-        for mm in n..nk {
-            let k = n * nk + mm;
-            let dqdm = 2.0 * dx[mm] * ws.mdx[n];
-            ws.dwdm[k] = dqdm * dwdq;
-            let drow = &d[mm * nk + n..(mm + 1) * nk];
-            let sum: f64 = drow.iter().zip(mrow).map(|(a, b)| a * b).sum();
-            ws.dj2[k] = 4.0 * pen * sum;
-            if meta {
-                ws.ddw[k] = ddwdqdq * dqdm * dqdm + 2.0 * dwdq * dx[mm] * dx[mm];
-                ws.ddj2[k] = 4.0 * pen * (d[mm * nk + mm] + ss + m[k] * m[k]);
+        ws.mdx[n] = mrow.iter().zip(&dx[n..]).map(|(a, b)| a * b).sum();
+    }
+    // ∂J2/∂M_nm = 4 pen Σ_{i≥n} M_ni D_im (m ≥ n): row n of M·D, accumulated over the rows i
+    // of D (contiguous, so it vectorises; the same terms in the same order as a dot product).
+    for n in 0..nk {
+        let out = &mut ws.dj2[n * nk + n..(n + 1) * nk];
+        out.iter_mut().for_each(|v| *v = 0.0);
+        for i in n..nk {
+            let a = m[n * nk + i];
+            let drow = &d[i * nk + n..(i + 1) * nk];
+            for (o, &dv) in out.iter_mut().zip(drow) {
+                *o += a * dv;
+            }
+        }
+        let pen4 = 4.0 * pen;
+        out.iter_mut().for_each(|v| *v *= pen4);
+    }
+    for n in 0..nk {
+        let k0 = n * nk + n;
+        let len = nk - n;
+        let mdx_n = ws.mdx[n];
+        let dxr = &dx[n..];
+        let dwdm = &mut ws.dwdm[k0..k0 + len];
+        for (o, &x) in dwdm.iter_mut().zip(dxr) {
+            *o = 2.0 * x * mdx_n * dwdq;
+        }
+        if meta {
+            let mrow = &m[k0..k0 + len];
+            let ss: f64 = mrow.iter().map(|v| v * v).sum();
+            let ddw = &mut ws.ddw[k0..k0 + len];
+            for (o, &x) in ddw.iter_mut().zip(dxr) {
+                let dqdm = 2.0 * x * mdx_n;
+                *o = ddwdqdq * dqdm * dqdm + 2.0 * dwdq * x * x;
+            }
+            let ddj2 = &mut ws.ddj2[k0..k0 + len];
+            for (j, (o, &mv)) in ddj2.iter_mut().zip(mrow).enumerate() {
+                let mm = n + j;
+                *o = 4.0 * pen * (d[mm * nk + mm] + ss + mv * mv);
             }
         }
     }
@@ -106,6 +130,7 @@ pub(crate) fn derivatives(
 /// regression step, with `s` the new projections, `e_cv` and `e` from that step. Updates the
 /// memory traces `H`, `r`. Does nothing while `n_data[0]·(1 − λ[0]) ≤ 0.1`.
 #[allow(clippy::too_many_arguments)]
+#[inline(always)]
 pub(crate) fn output_terms(
     pls: &mut Pls,
     nr: usize,
@@ -173,6 +198,7 @@ pub(crate) fn output_terms(
 /// The gradient step on `M` (and the meta step on `α`), then `D = MᵀM`.
 /// Expects [`derivatives`] in `ws` and a non-empty `acc`.
 #[allow(clippy::too_many_arguments)]
+#[inline(always)]
 pub(crate) fn step(
     p: &Params,
     m: &mut [f64],
@@ -186,47 +212,143 @@ pub(crate) fn step(
     let nk = p.nk();
     let diag = p.cfg.diag_only;
     let inv_n = 1.0 / acc.n as f64;
-    let (ca, cb, cc) = (acc.a * inv_n, acc.b * inv_n, acc.c * inv_n);
-    let meta = p.cfg.meta;
-    let rate = p.cfg.meta_rate;
-    // The free elements: diagonal (k = n) or upper triangle (k = n·nk + m, m ≥ n).
-    let idx = |n: usize, mm: usize| if diag { n } else { n * nk + mm };
-    let mut max_m: f64 = 0.0;
-    for n in 0..nk {
-        for mm in if diag { n..n + 1 } else { n..nk } {
-            max_m = max_m.max(m[idx(n, mm)].abs());
-        }
-    }
-    for n in 0..nk {
-        for mm in if diag { n..n + 1 } else { n..nk } {
-            let k = idx(n, mm);
-            let g = ca * ws.dj2[k] + cb * ws.dwdm[k];
-            if meta {
-                let gg = ca * ws.ddj2[k] + cb * ws.ddw[k] + cc * ws.dwdm[k] * ws.dwdm[k];
-                let aux = (rate * g * hm[k]).clamp(-0.1, 0.1);
-                b[k] = (b[k] - aux).clamp(-10.0, 10.0);
-                alpha[k] = b[k].exp();
-                hm[k] = hm[k] * (1.0 - alpha[k] * gg).max(0.0) - alpha[k] * g;
-            }
-            let dm = alpha[k] * g;
-            if dm > 0.1 * max_m {
-                alpha[k] *= 0.5;
-            } else {
-                m[k] -= dm;
-            }
-        }
-    }
+    let c = Coef {
+        a: acc.a * inv_n,
+        b: acc.b * inv_n,
+        c: acc.c * inv_n,
+        meta: p.cfg.meta,
+        rate: p.cfg.meta_rate,
+        max_m: 0.0,
+    };
     if diag {
+        let c = Coef {
+            max_m: max_abs(0.0, &m[..nk]),
+            ..c
+        };
+        let r = 0..nk;
+        let g = &mut ws.dj2[r.clone()];
+        step_row(
+            &c,
+            g,
+            &ws.dwdm[r.clone()],
+            &ws.ddw[r.clone()],
+            &ws.ddj2[r.clone()],
+            &mut m[r.clone()],
+            &mut alpha[r.clone()],
+            &mut b[r.clone()],
+            &mut hm[r],
+        );
         for n in 0..nk {
             d[n] = m[n] * m[n];
         }
-    } else {
-        for i in 0..nk {
-            for j in i..nk {
-                let v: f64 = (0..=i).map(|k| m[k * nk + i] * m[k * nk + j]).sum();
-                d[i * nk + j] = v;
-                d[j * nk + i] = v;
+        return;
+    }
+    // The free elements: the upper triangle, row n = k ∈ n·nk + (n..nk).
+    let mut max_m: f64 = 0.0;
+    for n in 0..nk {
+        max_m = max_abs(max_m, &m[n * nk + n..(n + 1) * nk]);
+    }
+    let c = Coef { max_m, ..c };
+    for n in 0..nk {
+        let r = n * nk + n..(n + 1) * nk;
+        step_row(
+            &c,
+            &mut ws.dj2[r.clone()],
+            &ws.dwdm[r.clone()],
+            &ws.ddw[r.clone()],
+            &ws.ddj2[r.clone()],
+            &mut m[r.clone()],
+            &mut alpha[r.clone()],
+            &mut b[r.clone()],
+            &mut hm[r],
+        );
+    }
+    mtm(nk, m, d);
+}
+
+/// Coefficients of one metric step: the output-averaged `T·w/W`, `T·∂J1/∂w`, `T·∂²J1/∂w²`,
+/// meta learning on/off and its rate, and `max |M|` before the step.
+struct Coef {
+    a: f64,
+    b: f64,
+    c: f64,
+    meta: bool,
+    rate: f64,
+    max_m: f64,
+}
+
+/// The step on a contiguous run of free elements of `M`: on entry `g` holds `∂J2/∂M`, on exit
+/// the total gradient `T·∂J/∂M`.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn step_row(
+    c: &Coef,
+    g: &mut [f64],
+    dwdm: &[f64],
+    ddw: &[f64],
+    ddj2: &[f64],
+    m: &mut [f64],
+    alpha: &mut [f64],
+    b: &mut [f64],
+    hm: &mut [f64],
+) {
+    let len = g.len();
+    let (dwdm, ddw, ddj2) = (&dwdm[..len], &ddw[..len], &ddj2[..len]);
+    let (m, alpha, b, hm) = (
+        &mut m[..len],
+        &mut alpha[..len],
+        &mut b[..len],
+        &mut hm[..len],
+    );
+    for k in 0..len {
+        g[k] = c.a * g[k] + c.b * dwdm[k];
+    }
+    if c.meta {
+        for k in 0..len {
+            let aux = (c.rate * g[k] * hm[k]).clamp(-0.1, 0.1);
+            b[k] = (b[k] - aux).clamp(-10.0, 10.0);
+        }
+        for k in 0..len {
+            alpha[k] = exp_fast(b[k]);
+        }
+        for k in 0..len {
+            let gg = c.a * ddj2[k] + c.b * ddw[k] + c.c * dwdm[k] * dwdm[k];
+            hm[k] = hm[k] * (1.0 - alpha[k] * gg).max(0.0) - alpha[k] * g[k];
+        }
+    }
+    let thr = 0.1 * c.max_m;
+    for k in 0..len {
+        let dm = alpha[k] * g[k];
+        let halve = dm > thr;
+        alpha[k] = if halve { alpha[k] * 0.5 } else { alpha[k] };
+        m[k] = if halve { m[k] } else { m[k] - dm };
+    }
+}
+
+/// `D = MᵀM` for the upper-triangular `M` (row-major, `nk × nk`): the upper triangle by
+/// rank-one updates with the rows of `M` (contiguous, so they vectorise; each element sums
+/// the same terms in the same order as `Σ_{k≤i} M_ki M_kj`), then mirrored.
+#[inline(always)]
+fn mtm(nk: usize, m: &[f64], d: &mut [f64]) {
+    let (m, d) = (&m[..nk * nk], &mut d[..nk * nk]);
+    for i in 0..nk {
+        d[i * nk + i..(i + 1) * nk]
+            .iter_mut()
+            .for_each(|v| *v = 0.0);
+    }
+    for k in 0..nk {
+        let mrow = &m[k * nk..(k + 1) * nk];
+        for i in k..nk {
+            let a = mrow[i];
+            let drow = &mut d[i * nk + i..(i + 1) * nk];
+            for (dv, &mv) in drow.iter_mut().zip(&mrow[i..]) {
+                *dv += a * mv;
             }
+        }
+    }
+    for i in 0..nk {
+        for j in i + 1..nk {
+            d[j * nk + i] = d[i * nk + j];
         }
     }
 }

@@ -145,7 +145,43 @@ impl Lwpr {
 }
 
 /// Updates sub-model `s` (outputs `o0..o0+ny` of `ws.yn`). Returns (max w, added, pruned).
+///
+/// The same code is compiled twice, once for the baseline target and once with AVX2 enabled
+/// (chosen at run time); vector instructions do the same IEEE operations in the same order,
+/// so both give bit-identical results.
 fn update_sub(
+    p: &Params,
+    sub: &mut SubModel,
+    s: usize,
+    o0: usize,
+    ws: &mut Scratch,
+    events: &mut Vec<RfEvent>,
+    next_id: &mut u64,
+) -> (f64, bool, bool) {
+    #[cfg(target_arch = "x86_64")]
+    if crate::simd::has_avx2() {
+        // SAFETY: the CPU supports AVX2 (checked at run time).
+        return unsafe { update_sub_avx2(p, sub, s, o0, ws, events, next_id) };
+    }
+    update_sub_impl(p, sub, s, o0, ws, events, next_id)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn update_sub_avx2(
+    p: &Params,
+    sub: &mut SubModel,
+    s: usize,
+    o0: usize,
+    ws: &mut Scratch,
+    events: &mut Vec<RfEvent>,
+    next_id: &mut u64,
+) -> (f64, bool, bool) {
+    update_sub_impl(p, sub, s, o0, ws, events, next_id)
+}
+
+#[inline(always)]
+fn update_sub_impl(
     p: &Params,
     sub: &mut SubModel,
     s: usize,

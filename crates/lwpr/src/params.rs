@@ -207,12 +207,13 @@ impl Params {
         }
     }
 
-    /// Kernel value and its first two derivatives with respect to `q`.
+    /// Kernel value and its first two derivatives with respect to `q` (the Gaussian's `exp`
+    /// by [`crate::simd::exp_fast`]).
     #[inline]
     pub fn kernel(&self, q: f64) -> (f64, f64, f64) {
         match self.cfg.kernel {
             Kernel::Gaussian => {
-                let w = (-0.5 * q).exp();
+                let w = crate::simd::exp_fast(-0.5 * q);
                 (w, -0.5 * w, 0.25 * w)
             }
             Kernel::Bisquare => {

@@ -31,13 +31,14 @@ impl PlsScratch {
     }
 }
 
-#[inline]
+#[inline(always)]
 pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
 /// Step (a) for the inputs: with `ω = sum_w[0]·λ[0]` (passed in, shared by all outputs),
 /// updates the RF's weighted mean and variance and writes `x̃ = x − mean_x` into `xmz`.
+#[inline(always)]
 pub(crate) fn update_input_means(rf: &mut Rf, omega: f64, x: &[f64], w: f64, xmz: &mut [f64]) {
     let inv = 1.0 / (omega + w);
     for i in 0..x.len() {
@@ -51,7 +52,7 @@ pub(crate) fn update_input_means(rf: &mut Rf, omega: f64, x: &[f64], w: f64, xmz
 
 /// Projections `s_j` of `x` on the first `np` directions (eq. of the PLS recursion
 /// `xres_{j+1} = xres_j − p_j s_j`).
-#[inline]
+#[inline(always)]
 pub(crate) fn project(pls: &Pls, nr: usize, np: usize, x: &[f64], xu: &mut [f64], s: &mut [f64]) {
     xu.copy_from_slice(x);
     for j in 0..np {
@@ -77,6 +78,7 @@ pub(crate) struct RegOut {
 
 /// Steps (a, output part) and (b): updates `β₀` with `(ω, inv)` from the input means, then one
 /// weighted PLS update with sample `(x̃, y)` and weight `w`. `ws.s` holds the new projections.
+#[inline(always)]
 pub(crate) fn update_regression(
     pls: &mut Pls,
     nr: usize,
@@ -170,6 +172,7 @@ pub(crate) fn update_regression(
 }
 
 /// Step (f): `n_data_j ← λ_j n_data_j + 1`, then the forgetting schedule.
+#[inline(always)]
 pub(crate) fn forget(pls: &mut Pls, tau: f64, final_lambda: f64) {
     for j in 0..pls.n_reg {
         pls.n_data[j] = pls.n_data[j] * pls.lambda[j] + 1.0;
@@ -179,6 +182,7 @@ pub(crate) fn forget(pls: &mut Pls, tau: f64, final_lambda: f64) {
 
 /// Recomputes `pls.slope = ∂(Σ_j β_j s_j)/∂x̃` over the predicting directions, by the adjoint
 /// recursion `a_j = β_j u_j + a_{j+1} − u_j (p_j · a_{j+1})`.
+#[inline(always)]
 pub(crate) fn update_slope(pls: &mut Pls, nr: usize) {
     let np = pls.n_pred(nr);
     let a = &mut pls.slope;

@@ -90,7 +90,7 @@ impl Scratch {
 /// that partial sum (`≥ bound`) is returned early. Below `bound` the result is the full sum,
 /// bit for bit the same as without a bound (same terms, same order). Pass `f64::INFINITY` for
 /// the exact value.
-#[inline]
+#[inline(always)]
 pub(crate) fn quad(
     diag: bool,
     c: &[f64],
@@ -113,7 +113,7 @@ pub(crate) fn quad(
 }
 
 /// Diagonal metric: `Σ_i D_i (x_i − c_i)²`, checking the bound every 8 terms.
-#[inline]
+#[inline(always)]
 fn quad_diag(c: &[f64], d: &[f64], x: &[f64], bound: f64) -> f64 {
     let n = x.len();
     let (c, d) = (&c[..n], &d[..n]);
@@ -137,7 +137,7 @@ fn quad_diag(c: &[f64], d: &[f64], x: &[f64], bound: f64) -> f64 {
 }
 
 /// Full metric, `N` known at compile time (small input spaces).
-#[inline]
+#[inline(always)]
 fn quad_full_n<const N: usize>(c: &[f64], m: &[f64], x: &[f64], bound: f64) -> f64 {
     let (c, m, x) = (&c[..N], &m[..N * N], &x[..N]);
     let mut dx = [0.0; N];
@@ -159,7 +159,7 @@ fn quad_full_n<const N: usize>(c: &[f64], m: &[f64], x: &[f64], bound: f64) -> f
 }
 
 /// Full metric, any size: `Σ_n (Σ_{i≥n} M_ni dx_i)²`, checking the bound after each row.
-#[inline]
+#[inline(always)]
 fn quad_full(c: &[f64], m: &[f64], x: &[f64], dx: &mut [f64], bound: f64) -> f64 {
     let nk = x.len();
     let (c, m, dx) = (&c[..nk], &m[..nk * nk], &mut dx[..nk]);
