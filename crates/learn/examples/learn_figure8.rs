@@ -54,6 +54,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if let Ok(v) = std::env::var("XSCALE") {
         lcfg.exploration_scale = v.parse()?;
     }
+    lcfg.gravity_on_policy = std::env::var("GRAVON").is_ok();
+    if let Ok(d) = std::env::var("GINITD") {
+        lcfg.gravity.init_d = lwpr::MetricInit::Scalar(d.parse()?);
+    }
+    if let Ok(v) = std::env::var("NSHRINK") {
+        lcfg.null_space_shrink = v.parse()?;
+    }
     if let Ok(v) = std::env::var("MINESS") {
         lcfg.min_ess = v.parse()?;
     }
@@ -84,6 +91,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         explore: std::env::var("NOEXPLORE").is_err(),
         babble: osrl_learn::train::BabbleConfig {
             minutes: babble,
+            spread: std::env::var("SPREAD").map_or(Ok(0.4), |s| s.parse())?,
             ..Default::default()
         },
         ..TrainConfig::default()
@@ -115,8 +123,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         &mut |p| {
             if let Some(e) = &p.eval {
                 println!(
-                "{:6.2} min {:10} rfs {:4} trained {:4} | track {:8.2} mm (max {:8.2}) nmse {:7.4} cost {:6.3} fallback {:5.3} | episodes {} aborted {}",
-                p.sim_minutes, p.phase, p.n_local_models, p.n_trained, e.tracking_rms_mm, e.tracking_max_mm, e.command_nmse, e.command_cost_ratio, e.fallback_share, p.episodes, p.aborted_episodes
+                "{:6.2} min {:10} rfs {:4} trained {:4} | track {:8.2} mm (max {:8.2}) nmse {:7.4} (null {:7.4} nom {:7.4} Â {:5.3}) cost {:6.3} fallback {:5.3} | episodes {} aborted {}",
+                p.sim_minutes, p.phase, p.n_local_models, p.n_trained, e.tracking_rms_mm, e.tracking_max_mm, e.command_nmse, e.command_nmse_null, e.nominal_nmse, e.gain_error, e.command_cost_ratio, e.fallback_share, p.episodes, p.aborted_episodes
             );
             }
         },

@@ -93,6 +93,14 @@ pub struct LearnerConfig {
     /// 2.9/0.65/0.87 mm at command nMSE 0.93/0.77/1.05; without it seed 2 fails while seed 0 gets
     /// further, 1.06 mm at nMSE 0.49 after 30 minutes.)
     pub null_space_cap: Option<f64>,
+    /// The gravity model `ĝ` keeps learning during on-policy training (false: it learns from the
+    /// babbling only; see [`crate::Learner::freeze_gravity`]). Default false.
+    pub gravity_on_policy: bool,
+    /// Hindsight null-space shrinkage `κ ∈ [0, 1]`: the regression target `u − u0` of each
+    /// hindsight sample loses the share `κ` of its part in the null space of the blended `Â`,
+    /// `(u − u0) − κ (I − Â⁺Â)(u − u0)` — the same measured `ẍ` (to first order) at a lower
+    /// cost. 0 is the paper's plain relabelling. Default 0.
+    pub null_space_shrink: f64,
     /// Cap on the exploration noise of joint `j`, as a share of the standard deviation of its
     /// torques during the warm-up (so light distal joints are not shaken by the noise that
     /// suits heavy proximal ones). Default 0.05.
@@ -144,6 +152,8 @@ impl Default for LearnerConfig {
             exploration_scale: 1.0,
             exploration: ExplorationKind::NullSpace,
             null_space_cap: None,
+            null_space_shrink: 1.0,
+            gravity_on_policy: false,
             exploration_cap: 0.05,
             max_abs_acceleration: 1000.0,
             warmup_samples: 1000,
@@ -195,6 +205,12 @@ impl LearnerConfig {
             if !(cap >= 0.0 && cap.is_finite()) {
                 return bad(format!("null_space_cap {cap} must be finite and ≥ 0"));
             }
+        }
+        if !(0.0..=1.0).contains(&self.null_space_shrink) {
+            return bad(format!(
+                "null_space_shrink {} must be in [0, 1]",
+                self.null_space_shrink
+            ));
         }
         if !(self.exploration_cap >= 0.0 && self.exploration_cap.is_finite()) {
             return bad(format!(

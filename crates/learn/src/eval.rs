@@ -21,6 +21,18 @@ pub struct EvalResult {
     pub command_nmse: f64,
     /// Mean `‖u − u0‖²` of the learned commands over that of `u*`.
     pub command_cost_ratio: f64,
+    /// The part of `command_nmse` in the null space of the true `A = J M⁻¹` (`‖(I − A⁺A)(u −
+    /// u*)‖²`, same normalisation): the redundancy resolution's share of the error.
+    #[serde(default)]
+    pub command_nmse_null: f64,
+    /// The learned nominal behaviour's error, `‖û0 − u0‖²` (learned `ĝ` vs true `g`), with the
+    /// same normalisation: a floor of `command_nmse` set by the gravity model.
+    #[serde(default)]
+    pub nominal_nmse: f64,
+    /// Mean relative error `‖Â − A‖_F / ‖A‖_F` of the learner's blended input gain `Â = ∂ẍ/∂u`
+    /// against the true `A = J M⁻¹` (steps where the learner has one).
+    #[serde(default)]
+    pub gain_error: f64,
     /// Share of steps where no trained local controller was active (fallback to `u0`).
     pub fallback_share: f64,
     /// Largest change of the command between consecutive steps (N·m), learned and analytical.
@@ -107,6 +119,8 @@ impl Evaluator {
         let steps = (self.seconds / dt).round() as usize;
         let warm = (self.traj.period() / dt).round() as usize;
         let (mut u, mut u_star, mut u0) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        let mut u0_hat = vec![0.0; n];
+        let mut a_hat = vec![0.0; n * m];
         let mut xdd_ref = vec![0.0; m];
         let (mut window, mut all) = (Acc::new(n), Acc::new(n));
         let (mut prev_u, mut prev_us): (Option<Vec<f64>>, Option<Vec<f64>>) = (None, None);
@@ -141,6 +155,12 @@ impl Evaluator {
                 &u0,
                 &mut u_star,
             )?;
+            learner.nominal(meas.q.as_slice(), meas.qd.as_slice(), &mut u0_hat)?;
+            let null2 = null_part2(self.osc.data(), &axes, &u, &u_star);
+            let gain_err = learner
+                .input_gain(meas.q.as_slice(), meas.qd.as_slice(), &mut a_hat)?
+                .then(|| gain_error(self.osc.data(), &axes, &a_hat));
+            let nom2: f64 = u0_hat.iter().zip(&u0).map(|(a, b)| (a - b).powi(2)).sum();
             let e = axes
                 .iter()
                 .enumerate()
@@ -176,6 +196,12 @@ impl Evaluator {
             for (acc, on) in [(&mut window, k >= warm), (&mut all, true)] {
                 if on {
                     acc.add(e, src == CommandSource::Fallback, &u, &u_star, &u0);
+                    acc.null2 += null2;
+                    acc.nom2 += nom2;
+                    if let Some(g) = gain_err {
+                        acc.gain_err += g;
+                        acc.gain_count += 1;
+                    }
                 }
             }
             if e > 0.2 {
@@ -200,6 +226,10 @@ struct Acc {
     du2: f64,
     c_l: f64,
     c_s: f64,
+    null2: f64,
+    nom2: f64,
+    gain_err: f64,
+    gain_count: usize,
     fall: usize,
     s1: Vec<f64>,
     s2: Vec<f64>,
@@ -214,6 +244,10 @@ impl Acc {
             du2: 0.0,
             c_l: 0.0,
             c_s: 0.0,
+            null2: 0.0,
+            nom2: 0.0,
+            gain_err: 0.0,
+            gain_count: 0,
             fall: 0,
             s1: vec![0.0; n],
             s2: vec![0.0; n],
@@ -245,10 +279,45 @@ impl Acc {
             tracking_max_mm: 1e3 * self.emax,
             command_nmse: self.du2 / c / var,
             command_cost_ratio: self.c_l / self.c_s.max(1e-12),
+            command_nmse_null: self.null2 / c / var,
+            nominal_nmse: self.nom2 / c / var,
+            gain_error: self.gain_err / self.gain_count.max(1) as f64,
             fallback_share: self.fall as f64 / c,
             max_command_step: step_l,
             max_command_step_analytical: step_a,
             diverged,
         }
     }
+}
+
+/// The true input gain `B = J M⁻¹` (task rows, m×n) of the dynamics in `data`, if `M` inverts.
+fn true_gain(data: &osrl_dynamics::Data, axes: &[usize]) -> Option<nalgebra::DMatrix<f64>> {
+    let n = data.mass.nrows();
+    let j = nalgebra::DMatrix::from_fn(axes.len(), n, |r, c| data.jac[(axes[r], c)]);
+    Some(j * data.mass.clone().try_inverse()?)
+}
+
+/// `‖Â − B‖_F / ‖B‖_F` for the learner's `Â` (m×n row-major).
+fn gain_error(data: &osrl_dynamics::Data, axes: &[usize], a_hat: &[f64]) -> f64 {
+    let Some(b) = true_gain(data, axes) else {
+        return f64::NAN;
+    };
+    let n = b.ncols();
+    let d = nalgebra::DMatrix::from_fn(b.nrows(), n, |r, c| a_hat[r * n + c]) - &b;
+    d.norm() / b.norm().max(1e-300)
+}
+
+/// `‖(I − B⁺B)(u − u*)‖²` with the true `B = J M⁻¹` (task rows) of the dynamics in `data`; 0 if
+/// `B Bᵀ` is singular. Allocates (evaluation only, not a control path).
+fn null_part2(data: &osrl_dynamics::Data, axes: &[usize], u: &[f64], u_star: &[f64]) -> f64 {
+    let n = u.len();
+    let Some(b) = true_gain(data, axes) else {
+        return 0.0;
+    };
+    let e = nalgebra::DVector::from_fn(n, |i, _| u[i] - u_star[i]);
+    let Some(s_inv) = (&b * b.transpose()).try_inverse() else {
+        return 0.0;
+    };
+    let range = b.transpose() * (s_inv * (&b * &e));
+    (e - range).norm_squared()
 }

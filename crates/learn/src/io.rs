@@ -30,7 +30,7 @@ use serde::{Deserialize, Serialize};
 /// First bytes of a saved learned controller.
 pub const MAGIC: &[u8; 8] = b"OSRLLC\0\0";
 /// Version of the saved format; files of another version are refused.
-pub const FORMAT_VERSION: u32 = 1;
+pub const FORMAT_VERSION: u32 = 2;
 
 /// Everything a learner is, as stored (the config as JSON text, so its untagged enums survive).
 #[derive(Serialize, Deserialize)]
@@ -45,6 +45,7 @@ struct Saved {
     locals: LocalControllers,
     warm: Vec<Measurement>,
     stats: LearnerStats,
+    gravity_frozen: bool,
 }
 
 /// FNV-1a over the payload: detects corruption that would still parse.
@@ -70,6 +71,7 @@ impl Learner {
             locals: self.locals.clone(),
             warm: self.warm.clone(),
             stats: self.stats,
+            gravity_frozen: self.gravity_frozen,
         };
         let payload = postcard::to_allocvec(&saved).map_err(|e| LearnError::Load(e.to_string()))?;
         let mut out = Vec::with_capacity(payload.len() + 28);
@@ -117,6 +119,7 @@ impl Learner {
         learner.locals = s.locals;
         learner.warm = s.warm;
         learner.stats = s.stats;
+        learner.gravity_frozen = s.gravity_frozen;
         if let Some(g) = learner.gravity.as_mut() {
             g.restore_buffers();
         }

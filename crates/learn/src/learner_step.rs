@@ -159,7 +159,7 @@ impl Learner {
         self.stats.samples += 1;
         // Supervised models: gravity (inverse dynamics) and the forward model (the partition).
         let dt = cur.t - prev.t;
-        if dt > 0.0 {
+        if dt > 0.0 && !self.gravity_frozen {
             let g = self.gravity.as_mut().expect("models exist");
             g.learn(prev.q.as_slice(), prev.qd.as_slice(), q, qd, u, dt)?;
         }
@@ -211,19 +211,26 @@ impl Learner {
         self.ws.u0 = u0;
         // Hindsight sample φ = [ẍ_measured, q̇, (q − c), 1] → u (or u − u0), weighted by each
         // RF's activation.
-        let phi = &mut self.ws.phi;
-        phi[..m].copy_from_slice(cur.xdd.as_slice());
-        phi[m..m + n].copy_from_slice(qd);
-        let last = phi.len() - 1;
-        phi[last] = 1.0;
         let fwd = self.forward.as_mut().expect("models exist");
         fwd.activations(q, qd, self.cfg.activation_cutoff, &mut self.ws.acts)?;
         let full: f64 = self.ws.du.iter().map(|v| v * v).sum();
+        let known = blended_gain(&self.locals, &self.ws.acts, n, m, &mut self.ws.a_hat);
+        // Hindsight null-space shrinkage of the target (κ = 0: the paper's relabelling).
+        let kappa = self.cfg.null_space_shrink;
+        if kappa > 0.0 && known && self.cfg.residual {
+            let ws = &mut self.ws;
+            ws.z.copy_from_slice(&ws.du);
+            if project_null(&ws.a_hat, &mut ws.z, m, &mut ws.y, &mut ws.s) {
+                for (t, z) in ws.target.iter_mut().zip(&ws.z) {
+                    *t -= kappa * z;
+                }
+            }
+        }
         let r = match self.cfg.cost {
             _ if !self.cfg.reward_weighting => 0.0,
             CostKind::Full => full,
             CostKind::NullSpace => {
-                if blended_gain(&self.locals, &self.ws.acts, n, m, &mut self.ws.a_hat) {
+                if known {
                     null_space_cost(
                         &self.ws.a_hat,
                         &self.ws.du,
@@ -237,6 +244,11 @@ impl Learner {
                 }
             }
         };
+        let phi = &mut self.ws.phi;
+        phi[..m].copy_from_slice(cur.xdd.as_slice());
+        phi[m..m + n].copy_from_slice(qd);
+        let last = phi.len() - 1;
+        phi[last] = 1.0;
         // Features of the local dynamics regression: [u, q̇, q − c, 1] → ẍ.
         let phi_d = &mut self.ws.phi_d;
         phi_d[..n].copy_from_slice(u);
