@@ -8,7 +8,7 @@
 
 use crate::params::Params;
 use crate::rf::Pls;
-use crate::simd::{exp_fast, max_abs};
+use crate::simd::{dot, exp_fast, max_abs};
 
 /// Derivative buffers, one entry per metric element.
 #[derive(Clone, Debug, Default)]
@@ -55,6 +55,7 @@ pub(crate) struct MetricAcc {
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 pub(crate) fn derivatives(
+    nk: usize,
     diag: bool,
     meta: bool,
     m: &[f64],
@@ -64,8 +65,7 @@ pub(crate) fn derivatives(
     pen: f64,
     ws: &mut MetricScratch,
 ) {
-    let nk = ws.dx.len();
-    let dx = &ws.dx;
+    let dx = &ws.dx[..nk];
     if diag {
         for n in 0..nk {
             let aux = 2.0 * m[n];
@@ -83,7 +83,7 @@ pub(crate) fn derivatives(
     let dx = &dx[..nk];
     for n in 0..nk {
         let mrow = &m[n * nk + n..(n + 1) * nk];
-        ws.mdx[n] = mrow.iter().zip(&dx[n..]).map(|(a, b)| a * b).sum();
+        ws.mdx[n] = dot(mrow, &dx[n..]);
     }
     // ∂J2/∂M_nm = 4 pen Σ_{i≥n} M_ni D_im (m ≥ n): row n of M·D, accumulated over the rows i
     // of D (contiguous, so it vectorises; the same terms in the same order as a dot product).
@@ -200,6 +200,7 @@ pub(crate) fn output_terms(
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 pub(crate) fn step(
+    nk: usize,
     p: &Params,
     m: &mut [f64],
     d: &mut [f64],
@@ -209,7 +210,6 @@ pub(crate) fn step(
     acc: MetricAcc,
     ws: &mut MetricScratch,
 ) {
-    let nk = p.nk();
     let diag = p.cfg.diag_only;
     let inv_n = 1.0 / acc.n as f64;
     let c = Coef {

@@ -163,7 +163,7 @@ fn update_sub(
         // SAFETY: the CPU supports AVX2 (checked at run time).
         return unsafe { update_sub_avx2(p, sub, s, o0, ws, events, next_id) };
     }
-    update_sub_impl(p, sub, s, o0, ws, events, next_id)
+    update_sub_dims(p, sub, s, o0, ws, events, next_id)
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -177,11 +177,13 @@ unsafe fn update_sub_avx2(
     events: &mut Vec<RfEvent>,
     next_id: &mut u64,
 ) -> (f64, bool, bool) {
-    update_sub_impl(p, sub, s, o0, ws, events, next_id)
+    update_sub_dims(p, sub, s, o0, ws, events, next_id)
 }
 
+/// Small input spaces get their own copy of the update with the dimensions as constants, so
+/// that the loops over them unroll (the arithmetic is the same).
 #[inline(always)]
-fn update_sub_impl(
+fn update_sub_dims(
     p: &Params,
     sub: &mut SubModel,
     s: usize,
@@ -190,7 +192,28 @@ fn update_sub_impl(
     events: &mut Vec<RfEvent>,
     next_id: &mut u64,
 ) -> (f64, bool, bool) {
-    let (nk, nr, ml, ny) = (p.nk(), p.nr(), p.mlen(), p.n_local_out());
+    match (p.nk(), p.nr()) {
+        (1, 1) => update_sub_impl::<1, 1>(p, sub, s, o0, ws, events, next_id),
+        (2, 2) => update_sub_impl::<2, 2>(p, sub, s, o0, ws, events, next_id),
+        _ => update_sub_impl::<0, 0>(p, sub, s, o0, ws, events, next_id),
+    }
+}
+
+/// The update of one sub-model; `NK`, `NR` > 0 fix the kernel and regression dimensions at
+/// compile time (0: taken from `p`).
+#[inline(always)]
+fn update_sub_impl<const NK: usize, const NR: usize>(
+    p: &Params,
+    sub: &mut SubModel,
+    s: usize,
+    o0: usize,
+    ws: &mut Scratch,
+    events: &mut Vec<RfEvent>,
+    next_id: &mut u64,
+) -> (f64, bool, bool) {
+    let nk = if NK > 0 { NK } else { p.nk() };
+    let nr = if NR > 0 { NR } else { p.nr() };
+    let (ml, ny) = (p.mlen(), p.n_local_out());
     let diag = p.cfg.diag_only;
     let qb = p.q_bound(W_UPDATE);
     let (mut q1, mut i1, mut q2, mut i2) = (f64::INFINITY, usize::MAX, f64::INFINITY, usize::MAX);
@@ -201,7 +224,7 @@ fn update_sub_impl(
             diag,
             &sub.centers[i * nk..(i + 1) * nk],
             &kern[i * ml..(i + 1) * ml],
-            &ws.xk,
+            &ws.xk[..nk],
             &mut ws.met.dx,
             // An RF at q ≥ max(qb, q2) is neither updated nor among the two most active.
             qb.max(q2),
@@ -226,7 +249,7 @@ fn update_sub_impl(
     for &(i, w, dwdq, ddwdqdq) in ws.active.iter() {
         let rf = &mut sub.rfs[i];
         let omega = rf.outs[0].sum_w[0] * rf.outs[0].lambda[0];
-        pls::update_input_means(rf, omega, &ws.xr, w, &mut ws.pls.xmz);
+        pls::update_input_means(nr, rf, omega, &ws.xr, w, &mut ws.pls.xmz);
         if rf.outs[0].n_data[0] > 2.0 * nr as f64 {
             rf.trustworthy = true;
         }
@@ -256,6 +279,7 @@ fn update_sub_impl(
                 &mut sub.ds[i * ml..(i + 1) * ml],
             );
             metric::derivatives(
+                nk,
                 diag,
                 p.cfg.meta,
                 m,
@@ -266,6 +290,7 @@ fn update_sub_impl(
                 &mut ws.met,
             );
             metric::step(
+                nk,
                 p,
                 m,
                 d,

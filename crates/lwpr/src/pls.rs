@@ -31,22 +31,28 @@ impl PlsScratch {
     }
 }
 
-#[inline(always)]
-pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| x * y).sum()
-}
+pub(crate) use crate::simd::dot;
 
 /// Step (a) for the inputs: with `ω = sum_w[0]·λ[0]` (passed in, shared by all outputs),
 /// updates the RF's weighted mean and variance and writes `x̃ = x − mean_x` into `xmz`.
 #[inline(always)]
-pub(crate) fn update_input_means(rf: &mut Rf, omega: f64, x: &[f64], w: f64, xmz: &mut [f64]) {
+pub(crate) fn update_input_means(
+    nr: usize,
+    rf: &mut Rf,
+    omega: f64,
+    x: &[f64],
+    w: f64,
+    xmz: &mut [f64],
+) {
     let inv = 1.0 / (omega + w);
-    for i in 0..x.len() {
-        let m = (omega * rf.mean_x[i] + w * x[i]) * inv;
-        rf.mean_x[i] = m;
+    let (x, xmz) = (&x[..nr], &mut xmz[..nr]);
+    let (mean_x, var_x) = (&mut rf.mean_x[..nr], &mut rf.var_x[..nr]);
+    for i in 0..nr {
+        let m = (omega * mean_x[i] + w * x[i]) * inv;
+        mean_x[i] = m;
         let d = x[i] - m;
         xmz[i] = d;
-        rf.var_x[i] = (omega * rf.var_x[i] + w * d * d) * inv;
+        var_x[i] = (omega * var_x[i] + w * d * d) * inv;
     }
 }
 

@@ -93,9 +93,48 @@ impl Lwpr {
         strict: bool,
     ) -> Result<Support, LwprError> {
         check_vec("x", x, self.p.n_in)?;
+        #[cfg(target_arch = "x86_64")]
+        if crate::simd::has_avx2() {
+            // SAFETY: the CPU supports AVX2 (checked at run time).
+            return unsafe { self.predict_avx2(x, want, strict) };
+        }
+        self.predict_dims(x, want, strict)
+    }
+
+    /// [`Lwpr::predict_impl_mode`] compiled with AVX2 (same results, see `crate::simd`).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn predict_avx2(
+        &mut self,
+        x: &[f64],
+        want: Want,
+        strict: bool,
+    ) -> Result<Support, LwprError> {
+        self.predict_dims(x, want, strict)
+    }
+
+    /// Small input spaces get a copy with constant dimensions (as the update does).
+    #[inline(always)]
+    fn predict_dims(&mut self, x: &[f64], want: Want, strict: bool) -> Result<Support, LwprError> {
+        match (self.p.nk(), self.p.nr()) {
+            (1, 1) => self.predict_core::<1, 1>(x, want, strict),
+            (2, 2) => self.predict_core::<2, 2>(x, want, strict),
+            _ => self.predict_core::<0, 0>(x, want, strict),
+        }
+    }
+
+    #[inline(always)]
+    fn predict_core<const NK: usize, const NR: usize>(
+        &mut self,
+        x: &[f64],
+        want: Want,
+        strict: bool,
+    ) -> Result<Support, LwprError> {
         let Lwpr { p, subs, ws, .. } = self;
         ws.load_x(p, x);
-        let (n_in, nk, nr, ml, ny) = (p.n_in, p.nk(), p.nr(), p.mlen(), p.n_local_out());
+        let nk = if NK > 0 { NK } else { p.nk() };
+        let nr = if NR > 0 { NR } else { p.nr() };
+        let (n_in, ml, ny) = (p.n_in, p.mlen(), p.n_local_out());
         let diag = p.cfg.diag_only;
         let cutoff = p.cfg.cutoff;
         let qb = p.q_bound(cutoff);
@@ -121,7 +160,7 @@ impl Lwpr {
                 }
                 let c = &sub.centers[i * nk..(i + 1) * nk];
                 let md = &kern[i * ml..(i + 1) * ml];
-                let q = quad(diag, c, md, &ws.xk, &mut ws.met.dx, qb);
+                let q = quad(diag, c, md, &ws.xk[..nk], &mut ws.met.dx, qb);
                 if q >= qb {
                     continue;
                 }
@@ -130,9 +169,10 @@ impl Lwpr {
                     continue;
                 }
                 sum_w += w;
-                let xc = &mut ws.pls.xmz;
+                let xc = &mut ws.pls.xmz[..nr];
+                let (xr, mean_x) = (&ws.xr[..nr], &rf.mean_x[..nr]);
                 for k in 0..nr {
-                    xc[k] = ws.xr[k] - rf.mean_x[k];
+                    xc[k] = xr[k] - mean_x[k];
                 }
                 if want == Want::Jac {
                     // ∂w/∂x_K = 2 (dw/dq) D (x − c).
@@ -170,7 +210,7 @@ impl Lwpr {
                         ws.wconf[o] += w * gamma * (1.0 + w * ss);
                         yk
                     } else {
-                        pls.beta0 + dot(&pls.slope, xc)
+                        pls.beta0 + dot(&pls.slope[..nr], xc)
                     };
                     ws.yacc[o] += w * yk;
                     ws.wyy[o] += w * yk * yk;

@@ -112,18 +112,21 @@ pub(crate) fn quad(
     }
 }
 
-/// Diagonal metric: `Σ_i D_i (x_i − c_i)²`, checking the bound every 8 terms.
+/// Diagonal metric: `Σ_i D_i (x_i − c_i)²` in four interleaved partial sums (as
+/// [`crate::simd::dot`]), checking the bound every 8 terms. Each lane only grows, and so does
+/// their combination, so a partial value never exceeds the full sum.
 #[inline(always)]
 fn quad_diag(c: &[f64], d: &[f64], x: &[f64], bound: f64) -> f64 {
     let n = x.len();
     let (c, d) = (&c[..n], &d[..n]);
-    let mut q = 0.0;
+    let mut l = [0.0; 4];
     let mut i = 0;
     while i + 8 <= n {
         for k in i..i + 8 {
             let t = x[k] - c[k];
-            q += d[k] * t * t;
+            l[k % 4] += d[k] * t * t;
         }
+        let q = (l[0] + l[1]) + (l[2] + l[3]);
         if q >= bound {
             return q;
         }
@@ -131,9 +134,9 @@ fn quad_diag(c: &[f64], d: &[f64], x: &[f64], bound: f64) -> f64 {
     }
     for k in i..n {
         let t = x[k] - c[k];
-        q += d[k] * t * t;
+        l[k % 4] += d[k] * t * t;
     }
-    q
+    (l[0] + l[1]) + (l[2] + l[3])
 }
 
 /// Full metric, `N` known at compile time (small input spaces).
@@ -158,7 +161,8 @@ fn quad_full_n<const N: usize>(c: &[f64], m: &[f64], x: &[f64], bound: f64) -> f
     q
 }
 
-/// Full metric, any size: `Σ_n (Σ_{i≥n} M_ni dx_i)²`, checking the bound after each row.
+/// Full metric, any size: `Σ_n (Σ_{i≥n} M_ni dx_i)²` (the inner sums by [`crate::simd::dot`]),
+/// checking the bound after each row.
 #[inline(always)]
 fn quad_full(c: &[f64], m: &[f64], x: &[f64], dx: &mut [f64], bound: f64) -> f64 {
     let nk = x.len();
@@ -168,10 +172,7 @@ fn quad_full(c: &[f64], m: &[f64], x: &[f64], dx: &mut [f64], bound: f64) -> f64
     }
     let mut q = 0.0;
     for (n, row) in m.chunks_exact(nk).enumerate() {
-        let mut v = 0.0;
-        for (a, b) in row[n..].iter().zip(&dx[n..]) {
-            v += a * b;
-        }
+        let v = crate::simd::dot(&row[n..], &dx[n..]);
         q += v * v;
         if q >= bound {
             return q;

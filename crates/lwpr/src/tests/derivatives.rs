@@ -72,7 +72,7 @@ fn check(kernel: Kernel, diag: bool, seed: u64) {
     let mut ws = MetricScratch::new(nk, ml);
     ws.dx.copy_from_slice(&dx);
     let d = d_of(diag, nk, &m);
-    derivatives(diag, true, &m, &d, dwdq, ddwdqdq, pen, &mut ws);
+    derivatives(nk, diag, true, &m, &d, dwdq, ddwdqdq, pen, &mut ws);
     let w_of = |m: &[f64]| p.kernel(q_of(diag, nk, m, &dx)).0;
     let h = 1e-4;
     for n in 0..nk {
