@@ -5,6 +5,7 @@
 use crate::learned::Setup;
 use crate::plot::{Figure, Legend, Panel, Series, PALETTE};
 use anyhow::Result;
+use osrl_control::Trajectory;
 use osrl_learn::eval::{EvalResult, EvalSeries};
 
 const AXES: [&str; 3] = ["x", "y", "z"];
@@ -159,23 +160,50 @@ pub struct ArmSeries<'a> {
     pub who: &'a str,
 }
 
+/// Rows of `t` at which to draw the arm: from the last `per_period` steps (the last whole cycle),
+/// the step nearest to each of `k` evenly spaced phases of the path `traj`, the first at phase 0
+/// (the path's start `x_d(0)`). The phase is that of the warped path time `s(t)`, which lags `t`
+/// by half the start ramp, so phase 0 is generally not the first step of the last cycle.
+pub fn arm_instants(t: &[f64], traj: &Trajectory, per_period: usize, k: usize) -> Vec<usize> {
+    let start = t.len().saturating_sub(per_period.max(1));
+    let (period, k) = (traj.period(), k.max(1));
+    let warp = osrl_control::TimeWarp { ramp: traj.ramp() };
+    let phase: Vec<f64> = t[start..]
+        .iter()
+        .map(|&ti| warp.eval(ti).0.rem_euclid(period))
+        .collect();
+    (0..k)
+        .filter_map(|i| {
+            let target = i as f64 * period / k as f64;
+            let dist = |p: f64| {
+                let d = (p - target).rem_euclid(period);
+                d.min(period - d)
+            };
+            (0..phase.len())
+                .min_by(|&a, &b| dist(phase[a]).total_cmp(&dist(phase[b])))
+                .map(|r| start + r)
+        })
+        .collect()
+}
+
 /// The arm's links (joint frames to the end-effector, from forward kinematics) at `k` instants
-/// of the last cycle of `s`, over the desired path; planar arms in their plane, 3-D arms in the
-/// two planes spanned by the path's main axis and each other axis.
+/// of the last cycle of `s` ([`arm_instants`]: the first at the path's start), over the desired
+/// path of that cycle, with the desired point `x_d` of each instant (same step) marked in its
+/// colour and its time `t` in the legend; planar arms
+/// in their plane, 3-D arms in the two planes spanned by the path's main axis and each other axis.
 pub fn arm(setup: &Setup, s: &ArmSeries, per_period: usize, k: usize) -> Result<Figure> {
     let model = &setup.model;
     let (n, axes) = (model.nq(), model.task_axes());
     let m = axes.len();
-    let len = s.t.len();
-    let start = len.saturating_sub(per_period.max(1));
+    let rows = arm_instants(s.t, &setup.traj, per_period, k);
+    let (start, end) = (s.t.len().saturating_sub(per_period.max(1)), s.t.len());
     let mut data = model.data();
     let mut chains = Vec::new();
-    for i in 0..k.max(1) {
-        let row = start + i * (len - start) / k.max(1);
+    for &row in &rows {
         osrl_dynamics::forward_kinematics(model, &mut data, &s.q[row * n..(row + 1) * n])?;
         let mut pts: Vec<[f64; 3]> = data.world_pose.iter().map(|p| p.trans.into()).collect();
         pts.push(data.ee_pos.into());
-        chains.push((s.t[row] - s.t[start], pts));
+        chains.push((row, pts));
     }
     let planes: Vec<(usize, usize)> = if m == 2 {
         vec![(axes[0], axes[1])]
@@ -197,23 +225,29 @@ pub fn arm(setup: &Setup, s: &ArmSeries, per_period: usize, k: usize) -> Result<
                 &format!("{} [m]", AXES[b]),
             );
             let col = |w: usize| axes.iter().position(|&x| x == w);
-            if let (Some(ca), Some(cb)) = (col(a), col(b)) {
-                let path = (start..len)
-                    .map(|r| (s.x_d[r * m + ca], s.x_d[r * m + cb]))
-                    .collect();
+            let desired = |r: usize| {
+                let (ca, cb) = (col(a)?, col(b)?);
+                Some((s.x_d[r * m + ca], s.x_d[r * m + cb]))
+            };
+            let path: Vec<(f64, f64)> = (start..end).filter_map(desired).collect();
+            if !path.is_empty() {
                 p = p.with(
                     Series::line("desired path", path)
                         .color(PALETTE[7])
                         .width(1),
                 );
             }
-            for (i, (t, pts)) in chains.iter().enumerate() {
+            for (i, (row, pts)) in chains.iter().enumerate() {
                 let line = pts.iter().map(|v| (v[a], v[b])).collect();
+                let color = PALETTE[i % 7];
                 p = p.with(
-                    Series::line(&format!("t = {t:.1} s"), line)
-                        .color(PALETTE[i % 7])
+                    Series::line(&format!("t = {:.2} s", s.t[*row]), line)
+                        .color(color)
                         .style(crate::plot::Style::LineMarkers),
                 );
+                if let Some(xd) = desired(*row) {
+                    p = p.with(Series::markers("", vec![xd]).color(color).width(6));
+                }
             }
             p.equal_axes = true;
             p.legend = Legend::UpperLeft;
@@ -221,4 +255,87 @@ pub fn arm(setup: &Setup, s: &ArmSeries, per_period: usize, k: usize) -> Result<
         })
         .collect();
     Ok(Figure::grid(panels, 2))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use osrl_control::{run_closed_loop, Osc, OscConfig, TrajectoryConfig};
+    use osrl_dynamics::{SimConfig, SimRobot};
+
+    /// The arm drawing of an analytical eq. 7 run: each posture is drawn at one step of the last
+    /// cycle, its end-effector at the measured `x` of that step, its marked desired point at that
+    /// step's `x_d`, its label at that step's time; the first instant is the path's start.
+    #[test]
+    fn arm_postures_and_desired_points_are_those_of_one_step() {
+        for robot in ["planar3", "sarcos7"] {
+            let setup = Setup::for_robot(robot, TrajectoryConfig::default()).unwrap();
+            let model = &setup.model;
+            let mut osc = Osc::new(model.clone(), OscConfig::default()).unwrap();
+            let mut sim = SimRobot::new(model.clone(), SimConfig::default()).unwrap();
+            sim.reset(&setup.home, &vec![0.0; model.nq()]).unwrap();
+            let (axes, m) = (model.task_axes(), model.task_dim());
+            let run = run_closed_loop(&mut sim, &mut osc, &setup.traj, axes, 12.0).unwrap();
+            let s = &run.series;
+            let per = (setup.traj.period() / SimConfig::default().control_period).round() as usize;
+            let k = 6;
+            let rows = arm_instants(&s.t, &setup.traj, per, k);
+            assert_eq!(rows.len(), k);
+            assert!(rows.iter().all(|&r| r >= s.len() - per && r < s.len()));
+            // Instant i is at phase i/k of the path: x_d there is the path's point at path time
+            // i·T/k (the first: its start), to within half a control step of motion (< 1 mm).
+            // After the start ramp the path time is t − ramp/2.
+            let (ramp, period) = (setup.traj.ramp(), setup.traj.period());
+            for (i, &r) in rows.iter().enumerate() {
+                let path_t = ramp / 2.0 + period * (1.0 + i as f64 / k as f64);
+                let want = setup.traj.sample(path_t).x;
+                for (j, &a) in axes.iter().enumerate() {
+                    let d = (s.x_d[r * m + j] - want[a]).abs();
+                    assert!(
+                        d < 1e-3,
+                        "{robot} instant {i}: x_d off the path phase by {d} m"
+                    );
+                }
+            }
+            let x0 = setup.traj.start();
+            assert!(axes
+                .iter()
+                .enumerate()
+                .all(|(j, &a)| (s.x_d[rows[0] * m + j] - x0[a]).abs() < 1e-3));
+            let arm_s = ArmSeries {
+                t: &s.t,
+                q: &s.q,
+                x_d: &s.x_d,
+                who: "eq. 7",
+            };
+            let fig = arm(&setup, &arm_s, per, k).unwrap();
+            for panel in &fig.panels {
+                // The panel's world axes, from its x-axis label ("x [m]") and y-axis label.
+                let world = |l: &str| AXES.iter().position(|a| l.starts_with(a)).unwrap();
+                let (wa, wb) = (world(&panel.x_label), world(&panel.y_label));
+                let col = |w: usize| axes.iter().position(|&x| x == w).unwrap();
+                assert_eq!(
+                    panel.series.len(),
+                    1 + 2 * k,
+                    "path, then chain and marker per instant"
+                );
+                for (i, &r) in rows.iter().enumerate() {
+                    let chain = &panel.series[1 + 2 * i];
+                    let marker = &panel.series[2 + 2 * i];
+                    assert_eq!(
+                        chain.label.as_deref(),
+                        Some(&*format!("t = {:.2} s", s.t[r]))
+                    );
+                    let end = *chain.points.last().unwrap();
+                    let x = (s.x[r * m + col(wa)], s.x[r * m + col(wb)]);
+                    assert!(
+                        (end.0 - x.0).abs() < 1e-9 && (end.1 - x.1).abs() < 1e-9,
+                        "{robot} instant {i}: arm ends at {end:?}, x of its step is {x:?}"
+                    );
+                    let xd = (s.x_d[r * m + col(wa)], s.x_d[r * m + col(wb)]);
+                    assert_eq!(marker.points, vec![xd]);
+                }
+            }
+        }
+    }
 }
