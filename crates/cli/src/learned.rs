@@ -13,9 +13,9 @@ use osrl_control::{
     check_reachable, reference_acceleration, IkOptions, Target, TaskController, TaskGains,
     Trajectory, TrajectoryConfig,
 };
-use osrl_dynamics::{Measurement, Model, SimConfig, SimRobot};
+use osrl_dynamics::{Measurement, Model, SimConfig};
 use osrl_learn::eval::{EvalResult, Evaluator};
-use osrl_learn::train::{train, Progress, TrainConfig, TrainSummary};
+use osrl_learn::train::{Progress, TrainConfig, TrainSummary};
 use osrl_learn::{CommandSource, Learner, LearnerConfig};
 use serde::{Deserialize, Serialize};
 use serde_json::{json, Value};
@@ -143,27 +143,16 @@ pub fn train_learner(
     eval_periods: usize,
     observe: &mut dyn FnMut(&Progress),
 ) -> Result<(Learner, TrainSummary)> {
-    let sim_cfg = SimConfig {
-        seed: tcfg.seed,
-        ..SimConfig::default()
-    };
-    let dt = sim_cfg.control_period;
-    let mut sim = SimRobot::new(truth.clone(), sim_cfg)?;
-    sim.reset(&setup.home, &vec![0.0; truth.nq()])?;
-    let mut learner = Learner::new(truth.nq(), truth.task_dim(), dt, lcfg)?;
-    let mut ev = setup.evaluator(truth.clone(), tcfg.gains, eval_periods)?;
-    let axes = truth.task_axes().to_vec();
-    let summary = train(
-        &mut sim,
-        &mut learner,
+    osrl_learn::train::train_simulated(
+        truth,
         &setup.traj,
-        &axes,
+        &setup.home,
+        lcfg,
         tcfg,
-        &mut |l| ev.evaluate(l),
+        eval_periods,
         observe,
     )
-    .context("training")?;
-    Ok((learner, summary))
+    .context("training")
 }
 
 /// Whether an evaluation measured anything. The library reports, for a run that diverged during

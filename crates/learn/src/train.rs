@@ -100,6 +100,51 @@ pub struct Progress {
 mod train_loop;
 pub use train_loop::{train, TrainSummary};
 
+/// [`train`] on a simulated robot, for examples and experiments: a fresh learner with `lcfg`
+/// trained on a [`SimRobot`](osrl_dynamics::SimRobot) of `truth` (default
+/// [`SimConfig`](osrl_dynamics::SimConfig), noise seeded with `cfg.seed`) starting at rest at
+/// `home`, evaluated by an [`Evaluator`](crate::eval::Evaluator) on the same model over
+/// `eval_periods` periods. The model serves the simulator and the evaluator; the learner sees
+/// only measurements. Fails like [`train`], or on a `home` or `lcfg` that does not fit `truth`.
+pub fn train_simulated(
+    truth: &osrl_dynamics::Model,
+    traj: &Trajectory,
+    home: &[f64],
+    lcfg: crate::LearnerConfig,
+    cfg: &TrainConfig,
+    eval_periods: usize,
+    observe: &mut dyn FnMut(&Progress),
+) -> Result<(Learner, TrainSummary)> {
+    let sim_cfg = osrl_dynamics::SimConfig {
+        seed: cfg.seed,
+        ..Default::default()
+    };
+    let (n, dt) = (truth.nq(), sim_cfg.control_period);
+    let mut sim = osrl_dynamics::SimRobot::new(truth.clone(), sim_cfg)?;
+    sim.reset(home, &vec![0.0; n])?;
+    let mut learner = Learner::new(n, truth.task_dim(), dt, lcfg)?;
+    let mut ev = crate::eval::Evaluator::new(
+        truth.clone(),
+        Default::default(),
+        traj.clone(),
+        home.to_vec(),
+        cfg.gains,
+        eval_periods,
+    )?;
+    let axes = truth.task_axes();
+    let mut evaluate = |l: &mut Learner| ev.evaluate(l);
+    let summary = train(
+        &mut sim,
+        &mut learner,
+        traj,
+        axes,
+        cfg,
+        &mut evaluate,
+        observe,
+    )?;
+    Ok((learner, summary))
+}
+
 /// Minimum-jerk interpolation from `a` to `b` over `T`: position and velocity at `s = t/T`.
 pub(crate) fn min_jerk(a: f64, b: f64, t: f64, total: f64) -> (f64, f64) {
     let s = (t / total).clamp(0.0, 1.0);
