@@ -62,9 +62,10 @@ pub(crate) fn exp_fast(x: f64) -> f64 {
     p * f64::from_bits(k_bits.wrapping_add(1023) << 52)
 }
 
-/// `Σ a_i b_i` over `min(len)` terms in four interleaved partial sums (term `i` into lane
-/// `i mod 4`, combined as `(l₀ + l₁) + (l₂ + l₃)`), so the additions do not form one serial
-/// chain and vectorise. A fixed order: the same value on every CPU.
+/// `Σ a_i b_i` over `min(len)` terms: the terms of whole groups of four in four interleaved
+/// partial sums (term `i` into lane `i mod 4`), combined as `(l₀ + l₁) + (l₂ + l₃)`, then the
+/// last `len mod 4` terms in order. The additions do not form one serial chain and vectorise;
+/// the order is fixed, so the value is the same on every CPU.
 #[inline(always)]
 pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
     let n = a.len().min(b.len());
@@ -77,10 +78,11 @@ pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
             l[j] += x[j] * y[j];
         }
     }
-    for j in 0..ra.len() {
-        l[j] += ra[j] * rb[j];
+    let mut r = (l[0] + l[1]) + (l[2] + l[3]);
+    for (x, y) in ra.iter().zip(rb) {
+        r += x * y;
     }
-    (l[0] + l[1]) + (l[2] + l[3])
+    r
 }
 
 #[cfg(test)]
