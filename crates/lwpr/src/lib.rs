@@ -50,6 +50,7 @@ mod config;
 mod error;
 mod io;
 mod metric;
+mod metric_full;
 mod model;
 pub mod params;
 mod partition;

@@ -33,50 +33,6 @@ pub(crate) struct MetricScratch {
     pub row: Vec<f64>,
 }
 
-/// The row stride of the padded buffers: `nk` rounded up to a multiple of 4.
-#[inline(always)]
-fn padded(nk: usize) -> usize {
-    (nk + 3) & !3
-}
-
-/// `y ← y + Σ_t coefs[t]·x_t` where `x_t = src[t·stride..][..y.len()]`, adding the terms to
-/// each element in the order `t = 0, 1, …` (so exactly as `y += c·x` row after row), four
-/// rows per pass over `y` to cut loop overhead and loads/stores of `y`.
-#[inline(always)]
-fn acc_rows(y: &mut [f64], coefs: &[f64], src: &[f64], stride: usize) {
-    let len = y.len();
-    let mut t = 0;
-    while t + 4 <= coefs.len() {
-        let (c0, c1, c2, c3) = (coefs[t], coefs[t + 1], coefs[t + 2], coefs[t + 3]);
-        let x0 = &src[t * stride..][..len];
-        let x1 = &src[(t + 1) * stride..][..len];
-        let x2 = &src[(t + 2) * stride..][..len];
-        let x3 = &src[(t + 3) * stride..][..len];
-        for j in 0..len {
-            y[j] = (((y[j] + c0 * x0[j]) + c1 * x1[j]) + c2 * x2[j]) + c3 * x3[j];
-        }
-        t += 4;
-    }
-    while t < coefs.len() {
-        let c = coefs[t];
-        let x = &src[t * stride..][..len];
-        for j in 0..len {
-            y[j] += c * x[j];
-        }
-        t += 1;
-    }
-}
-
-/// Copies the `nk × nk` row-major `src` into `dst` with row stride `padded(nk)`, zero padding.
-#[inline(always)]
-fn pad_rows(nk: usize, src: &[f64], dst: &mut [f64]) {
-    let nkp = padded(nk);
-    for (s, d) in src.chunks_exact(nk).zip(dst.chunks_exact_mut(nkp)) {
-        d[..nk].copy_from_slice(s);
-        d[nk..].iter_mut().for_each(|v| *v = 0.0);
-    }
-}
-
 impl MetricScratch {
     /// Buffers for `nk` kernel dimensions and `mlen` metric elements.
     pub fn new(nk: usize, mlen: usize) -> MetricScratch {
@@ -87,9 +43,9 @@ impl MetricScratch {
             dj2: vec![0.0; mlen],
             ddw: vec![0.0; mlen],
             ddj2: vec![0.0; mlen],
-            pad_a: vec![0.0; nk * padded(nk)],
-            pad_b: vec![0.0; nk * padded(nk)],
-            row: vec![0.0; padded(nk)],
+            pad_a: vec![0.0; nk * super::metric_full::padded(nk)],
+            pad_b: vec![0.0; nk * super::metric_full::padded(nk)],
+            row: vec![0.0; super::metric_full::padded(nk)],
         }
     }
 }
@@ -142,15 +98,14 @@ pub(crate) fn derivatives(
     // of D (the same terms in the same order as a dot product). The rows are padded and
     // processed from the multiple of 4 at or below n, so every vector operation is whole; the
     // extra entries (m < n) are not used.
+    use super::metric_full::{pad_rows, padded, set_rows};
     let nkp = padded(nk);
     pad_rows(nk, d, &mut ws.pad_a);
     let pen4 = 4.0 * pen;
     for n in 0..nk {
         let a0 = n & !3;
-        let out = &mut ws.row[a0..nkp];
-        out.iter_mut().for_each(|v| *v = 0.0);
-        acc_rows(
-            out,
+        set_rows(
+            &mut ws.row[a0..nkp],
             &m[n * nk + n..(n + 1) * nk],
             &ws.pad_a[n * nkp + a0..],
             nkp,
@@ -323,18 +278,18 @@ pub(crate) fn step(
             &mut hm[r],
         );
     }
-    mtm(nk, m, d, &mut ws.pad_a, &mut ws.pad_b, &mut ws.row);
+    super::metric_full::mtm(nk, m, d, &mut ws.pad_a, &mut ws.pad_b, &mut ws.row);
 }
 
 /// Coefficients of one metric step: the output-averaged `T·w/W`, `T·∂J1/∂w`, `T·∂²J1/∂w²`,
 /// meta learning on/off and its rate, and `max |M|` before the step.
-struct Coef {
-    a: f64,
-    b: f64,
-    c: f64,
-    meta: bool,
-    rate: f64,
-    max_m: f64,
+pub(crate) struct Coef {
+    pub a: f64,
+    pub b: f64,
+    pub c: f64,
+    pub meta: bool,
+    pub rate: f64,
+    pub max_m: f64,
 }
 
 /// The step on a contiguous run of free elements of `M`: on entry `g` holds `∂J2/∂M`, on exit
@@ -382,31 +337,5 @@ fn step_row(
         let halve = dm > thr;
         alpha[k] = if halve { alpha[k] * 0.5 } else { alpha[k] };
         m[k] = if halve { m[k] } else { m[k] - dm };
-    }
-}
-
-/// `D = MᵀM` for the upper-triangular `M` (row-major, `nk × nk`): row `i` of `D` as
-/// `Σ_{k≤i} M_ki · (row k of M)` (each element sums the same terms in the same order as
-/// `Σ_{k≤i} M_ki M_kj`), on padded rows from the multiple of 4 at or below `i` so every vector
-/// operation is whole; the upper triangle is then copied out and mirrored.
-#[inline(always)]
-fn mtm(nk: usize, m: &[f64], d: &mut [f64], mp: &mut [f64], dp: &mut [f64], col: &mut [f64]) {
-    let nkp = padded(nk);
-    let (m, d) = (&m[..nk * nk], &mut d[..nk * nk]);
-    pad_rows(nk, m, mp);
-    for i in 0..nk {
-        let a0 = i & !3;
-        let row = &mut dp[i * nkp + a0..(i + 1) * nkp];
-        row.iter_mut().for_each(|v| *v = 0.0);
-        for k in 0..=i {
-            col[k] = m[k * nk + i];
-        }
-        acc_rows(row, &col[..=i], &mp[a0..], nkp);
-    }
-    for i in 0..nk {
-        d[i * nk + i..(i + 1) * nk].copy_from_slice(&dp[i * nkp + i..i * nkp + nk]);
-        for j in i + 1..nk {
-            d[j * nk + i] = dp[i * nkp + j];
-        }
     }
 }

@@ -278,6 +278,22 @@ fn update_sub_impl<const NK: usize, const NR: usize>(
                 &mut sub.ms[i * ml..(i + 1) * ml],
                 &mut sub.ds[i * ml..(i + 1) * ml],
             );
+            if !diag {
+                crate::metric_full::full_step(
+                    nk,
+                    p,
+                    m,
+                    d,
+                    &mut rf.alpha,
+                    &mut rf.b,
+                    &mut rf.hm,
+                    acc,
+                    dwdq,
+                    ddwdqdq,
+                    &mut ws.met,
+                );
+                continue;
+            }
             metric::derivatives(
                 nk,
                 diag,

@@ -1,4 +1,5 @@
 //! Unit tests of internals: derivatives against finite differences, PLS exactness.
 
 mod derivatives;
+mod fused;
 mod pls_exact;
