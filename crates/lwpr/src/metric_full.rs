@@ -117,7 +117,12 @@ pub(crate) fn full_step(
         ws.mdx[n] = dot(&m[n * nk + n..(n + 1) * nk], &dx[n..]);
     }
     let nkp = padded(nk);
-    pad_rows(nk, d, &mut ws.pad_a);
+    // Up to 4 dimensions (constants in the update's small-input copies) the plain loops unroll
+    // completely and padding would only add work.
+    let small = nk <= 4;
+    if !small {
+        pad_rows(nk, d, &mut ws.pad_a);
+    }
     let ddiag = &mut ws.pad_b[..nk];
     for (o, &v) in ddiag.iter_mut().zip(d.iter().step_by(nk + 1)) {
         *o = v;
@@ -127,13 +132,24 @@ pub(crate) fn full_step(
         let k0 = n * nk + n;
         let len = nk - n;
         // Row n of M·D (penalty gradient), from the unchanged D and row n of M.
-        let a0 = n & !3;
-        set_rows(
-            &mut ws.row[a0..nkp],
-            &m[k0..(n + 1) * nk],
-            &ws.pad_a[n * nkp + a0..],
-            nkp,
-        );
+        if small {
+            let row = &mut ws.row[n..nk];
+            row.iter_mut().for_each(|v| *v = 0.0);
+            for i in n..nk {
+                let a = m[n * nk + i];
+                for (o, &dv) in row.iter_mut().zip(&d[i * nk + n..(i + 1) * nk]) {
+                    *o += a * dv;
+                }
+            }
+        } else {
+            let a0 = n & !3;
+            set_rows(
+                &mut ws.row[a0..nkp],
+                &m[k0..(n + 1) * nk],
+                &ws.pad_a[n * nkp + a0..],
+                nkp,
+            );
+        }
         let md = &ws.row[n..nk];
         let mdx_n = ws.mdx[n];
         let dxr = &dx[n..];
@@ -201,6 +217,19 @@ pub(crate) fn mtm(
 ) {
     let nkp = padded(nk);
     let (m, d) = (&m[..nk * nk], &mut d[..nk * nk]);
+    if nk <= 4 {
+        for i in 0..nk {
+            for j in i..nk {
+                let mut v = 0.0;
+                for k in 0..=i {
+                    v += m[k * nk + i] * m[k * nk + j];
+                }
+                d[i * nk + j] = v;
+                d[j * nk + i] = v;
+            }
+        }
+        return;
+    }
     pad_rows(nk, m, mp);
     for i in 0..nk {
         let a0 = i & !3;
