@@ -12,8 +12,10 @@ mod common;
 use common::{curve_columns, write_csv, Args, Res, Setup, CURVE_HEADER};
 use osrl_learn::LearnerConfig;
 
-/// The variants: name and how it changes the robot's default learner config.
-const VARIANTS: [(&str, fn(&mut LearnerConfig)); 3] = [
+/// A variant: its name and how it changes the robot's default learner config.
+type Variant = (&'static str, fn(&mut LearnerConfig));
+
+const VARIANTS: [Variant; 3] = [
     ("rwr", |_| {}),
     ("unweighted", |c| c.reward_weighting = false),
     ("global_unweighted", |c| {
