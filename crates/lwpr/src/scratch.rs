@@ -112,9 +112,10 @@ pub(crate) fn quad(
     }
 }
 
-/// Diagonal metric: `Σ_i D_i (x_i − c_i)²` in four interleaved partial sums (as
-/// [`crate::simd::dot`]), checking the bound every 8 terms. Each lane only grows, and so does
-/// their combination, so a partial value never exceeds the full sum.
+/// Diagonal metric: `Σ_i D_i (x_i − c_i)²`, the terms of whole groups of 8 and then of one
+/// group of 4 in four interleaved partial sums (lane `i mod 4`), the last `< 4` terms in order,
+/// checking the bound after every 8 terms. Each lane only grows, and so does their
+/// combination, so a partial value never exceeds the full sum.
 #[inline(always)]
 fn quad_diag(c: &[f64], d: &[f64], x: &[f64], bound: f64) -> f64 {
     let n = x.len();
@@ -122,9 +123,10 @@ fn quad_diag(c: &[f64], d: &[f64], x: &[f64], bound: f64) -> f64 {
     let mut l = [0.0; 4];
     let mut i = 0;
     while i + 8 <= n {
-        for k in i..i + 8 {
-            let t = x[k] - c[k];
-            l[k % 4] += d[k] * t * t;
+        let (xs, cs, ds) = (&x[i..i + 8], &c[i..i + 8], &d[i..i + 8]);
+        for j in 0..8 {
+            let t = xs[j] - cs[j];
+            l[j % 4] += ds[j] * t * t;
         }
         let q = (l[0] + l[1]) + (l[2] + l[3]);
         if q >= bound {
@@ -132,11 +134,20 @@ fn quad_diag(c: &[f64], d: &[f64], x: &[f64], bound: f64) -> f64 {
         }
         i += 8;
     }
+    if i + 4 <= n {
+        let (xs, cs, ds) = (&x[i..i + 4], &c[i..i + 4], &d[i..i + 4]);
+        for j in 0..4 {
+            let t = xs[j] - cs[j];
+            l[j] += ds[j] * t * t;
+        }
+        i += 4;
+    }
+    let mut q = (l[0] + l[1]) + (l[2] + l[3]);
     for k in i..n {
         let t = x[k] - c[k];
-        l[k % 4] += d[k] * t * t;
+        q += d[k] * t * t;
     }
-    (l[0] + l[1]) + (l[2] + l[3])
+    q
 }
 
 /// Full metric, `N` known at compile time (small input spaces).
