@@ -140,7 +140,7 @@ pub fn e3_e4_e5(ctx: &Ctx, figs: &mut Vec<Fig>) -> Result<(Value, Value, Value)>
             )?;
             figs.push(Fig::new(
                 format!("E3/{robot}_arm.svg"),
-                format!("E3 (paper Fig. {}a): {robot} posture at {} instants of one figure-8 cycle under the {} controller (links from forward kinematics){}.",
+                format!("E3 (paper Fig. {}a): {robot} posture at {} instants of one figure-8 cycle under the {} controller, the first at the path start (links from forward kinematics; large dots: the desired point at the same instant){}.",
                     if *robot == "planar3" { 2 } else { 3 }, ctx.sizes.arm_instants, arm.who,
                     if learned_ok { "" } else { " — the learned controller's evaluation diverged, so the analytical run is drawn" }),
             ));
