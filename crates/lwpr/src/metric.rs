@@ -234,6 +234,7 @@ pub(crate) fn step(
         meta: p.cfg.meta,
         rate: p.cfg.meta_rate,
         max_m: 0.0,
+        libm_exp: libm_exp(nk),
     };
     if diag {
         let c = Coef {
@@ -290,6 +291,17 @@ pub(crate) struct Coef {
     pub meta: bool,
     pub rate: f64,
     pub max_m: f64,
+    /// `α = e^b` by `f64::exp` (small metrics, scalar code: lower latency) instead of the
+    /// vectorisable [`crate::simd::exp_fast`]; see [`libm_exp`].
+    pub libm_exp: bool,
+}
+
+/// Whether the metric step of an `nk`-dimensional kernel takes `α = e^b` from `f64::exp`
+/// (up to 4 dimensions, where the loops are short and scalar) or from
+/// [`crate::simd::exp_fast`] (vectorised loops). Both are within 1 ulp of `e^b`.
+#[inline(always)]
+pub(crate) fn libm_exp(nk: usize) -> bool {
+    nk <= 4
 }
 
 /// The step on a contiguous run of free elements of `M`: on entry `g` holds `∂J2/∂M`, on exit
@@ -323,8 +335,14 @@ fn step_row(
             let aux = (c.rate * g[k] * hm[k]).clamp(-0.1, 0.1);
             b[k] = (b[k] - aux).clamp(-10.0, 10.0);
         }
-        for k in 0..len {
-            alpha[k] = exp_fast(b[k]);
+        if c.libm_exp {
+            for k in 0..len {
+                alpha[k] = b[k].exp();
+            }
+        } else {
+            for k in 0..len {
+                alpha[k] = exp_fast(b[k]);
+            }
         }
         for k in 0..len {
             let gg = c.a * ddj2[k] + c.b * ddw[k] + c.c * dwdm[k] * dwdm[k];

@@ -110,6 +110,7 @@ pub(crate) fn full_step(
         meta,
         rate: p.cfg.meta_rate,
         max_m,
+        libm_exp: crate::metric::libm_exp(nk),
     };
     let thr = 0.1 * c.max_m;
     let dx = &ws.dx[..nk];
@@ -178,8 +179,14 @@ pub(crate) fn full_step(
                 let aux = (c.rate * gj * hrow[j]).clamp(-0.1, 0.1);
                 brow[j] = (brow[j] - aux).clamp(-10.0, 10.0);
             }
-            for j in 0..len {
-                arow[j] = exp_fast(brow[j]);
+            if c.libm_exp {
+                for j in 0..len {
+                    arow[j] = brow[j].exp();
+                }
+            } else {
+                for j in 0..len {
+                    arow[j] = exp_fast(brow[j]);
+                }
             }
             for j in 0..len {
                 let a = arow[j];

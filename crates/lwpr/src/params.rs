@@ -207,13 +207,12 @@ impl Params {
         }
     }
 
-    /// Kernel value and its first two derivatives with respect to `q` (the Gaussian's `exp`
-    /// by [`crate::simd::exp_fast`]).
+    /// Kernel value and its first two derivatives with respect to `q`.
     #[inline]
     pub fn kernel(&self, q: f64) -> (f64, f64, f64) {
         match self.cfg.kernel {
             Kernel::Gaussian => {
-                let w = crate::simd::exp_fast(-0.5 * q);
+                let w = (-0.5 * q).exp();
                 (w, -0.5 * w, 0.25 * w)
             }
             Kernel::Bisquare => {
