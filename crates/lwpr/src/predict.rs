@@ -154,17 +154,14 @@ impl Lwpr {
             }
             let kern = if diag { &sub.ds } else { &sub.ms };
             let mut sum_w = 0.0;
-            for i in 0..sub.rfs.len() {
-                // The distance first: it streams through the contiguous centres and metrics,
-                // and most RFs are far; only near ones touch their `Rf`.
+            for (i, rf) in sub.rfs.iter().enumerate() {
+                if !rf.trustworthy {
+                    continue;
+                }
                 let c = &sub.centers[i * nk..(i + 1) * nk];
                 let md = &kern[i * ml..(i + 1) * ml];
                 let q = quad(diag, c, md, &ws.xk[..nk], &mut ws.met.dx, qb);
                 if q >= qb {
-                    continue;
-                }
-                let rf = &sub.rfs[i];
-                if !rf.trustworthy {
                     continue;
                 }
                 let (w, dwdq, _) = p.kernel(q);
