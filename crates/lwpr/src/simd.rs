@@ -38,8 +38,10 @@ pub(crate) fn max_abs(acc: f64, v: &[f64]) -> f64 {
 pub(crate) fn exp_fast(x: f64) -> f64 {
     // 1.5·2^52: adding it rounds to an integer, which then sits in the low mantissa bits.
     const SHIFT: f64 = 6_755_399_441_055_744.0;
-    const LN2_HI: f64 = 6.931_471_803_691_238_164_9e-1; // 32 significant bits: k·LN2_HI is exact
-    const LN2_LO: f64 = 1.908_214_929_270_587_700_02e-10;
+    // ln 2 = LN2_HI + LN2_LO (fdlibm's split): LN2_HI has 32 significant bits, so k·LN2_HI is
+    // exact for |k| < 2^21.
+    const LN2_HI: f64 = f64::from_bits(0x3fe6_2e42_fee0_0000);
+    const LN2_LO: f64 = f64::from_bits(0x3dea_39ef_3579_3c76);
     let t = x * std::f64::consts::LOG2_E + SHIFT;
     let kf = t - SHIFT;
     let r = (x - kf * LN2_HI) - kf * LN2_LO;
