@@ -36,6 +36,12 @@ pub(crate) struct MetricScratch {
 impl MetricScratch {
     /// Buffers for `nk` kernel dimensions and `mlen` metric elements.
     pub fn new(nk: usize, mlen: usize) -> MetricScratch {
+        // Only a full metric (`mlen = nk²`) uses the padded buffers.
+        let pad = if mlen == nk * nk {
+            nk * super::metric_full::padded(nk)
+        } else {
+            0
+        };
         MetricScratch {
             dx: vec![0.0; nk],
             mdx: vec![0.0; nk],
@@ -43,8 +49,8 @@ impl MetricScratch {
             dj2: vec![0.0; mlen],
             ddw: vec![0.0; mlen],
             ddj2: vec![0.0; mlen],
-            pad_a: vec![0.0; nk * super::metric_full::padded(nk)],
-            pad_b: vec![0.0; nk * super::metric_full::padded(nk)],
+            pad_a: vec![0.0; pad],
+            pad_b: vec![0.0; pad],
             row: vec![0.0; super::metric_full::padded(nk)],
         }
     }
