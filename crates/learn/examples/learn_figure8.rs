@@ -58,6 +58,22 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if let Ok(d) = std::env::var("GINITD") {
         lcfg.gravity.init_d = lwpr::MetricInit::Scalar(d.parse()?);
     }
+    lcfg.gravity_velocity_products = std::env::var("NOPROD").is_err();
+    if std::env::var("GNOUPD").is_ok() {
+        lcfg.gravity.update_d = false;
+    }
+    if let Ok(v) = std::env::var("DFORGET") {
+        lcfg.dynamics_forgetting = v.parse()?;
+    }
+    if std::env::var("NOUPD").is_ok() {
+        lcfg.forward.update_d = false;
+    }
+    if let Ok(v) = std::env::var("PENALTY") {
+        lcfg.forward.penalty = v.parse()?;
+    }
+    if let Ok(v) = std::env::var("WGEN") {
+        lcfg.forward.w_gen = v.parse()?;
+    }
     if let Ok(v) = std::env::var("NSHRINK") {
         lcfg.null_space_shrink = v.parse()?;
     }
@@ -91,6 +107,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         explore: std::env::var("NOEXPLORE").is_err(),
         babble: osrl_learn::train::BabbleConfig {
             minutes: babble,
+            noise: std::env::var("BNOISE").map_or(Ok(0.02), |s| s.parse())?,
             spread: std::env::var("SPREAD").map_or(Ok(0.4), |s| s.parse())?,
             ..Default::default()
         },
@@ -123,8 +140,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         &mut |p| {
             if let Some(e) = &p.eval {
                 println!(
-                "{:6.2} min {:10} rfs {:4} trained {:4} | track {:8.2} mm (max {:8.2}) nmse {:7.4} (null {:7.4} nom {:7.4} Â {:5.3}) cost {:6.3} fallback {:5.3} | episodes {} aborted {}",
-                p.sim_minutes, p.phase, p.n_local_models, p.n_trained, e.tracking_rms_mm, e.tracking_max_mm, e.command_nmse, e.command_nmse_null, e.nominal_nmse, e.gain_error, e.command_cost_ratio, e.fallback_share, p.episodes, p.aborted_episodes
+                "{:6.2} min {:10} rfs {:4} trained {:4} | track {:8.2} mm (max {:8.2}) nmse {:7.4} (null {:7.4} nom {:7.4}/{:7.4} Â {:5.3}) cost {:6.3} (var {:.3} c* {:.3}) fallback {:5.3} | episodes {} aborted {}",
+                p.sim_minutes, p.phase, p.n_local_models, p.n_trained, e.tracking_rms_mm, e.tracking_max_mm, e.command_nmse, e.command_nmse_null, e.nominal_nmse, e.nominal_nmse_null, e.gain_error, e.command_cost_ratio, e.u_star_variance, e.u_star_cost, e.fallback_share, p.episodes, p.aborted_episodes
             );
             }
         },

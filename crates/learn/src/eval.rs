@@ -29,10 +29,19 @@ pub struct EvalResult {
     /// same normalisation: a floor of `command_nmse` set by the gravity model.
     #[serde(default)]
     pub nominal_nmse: f64,
+    /// Its part in the null space of the true `A` (the part the task cannot correct).
+    #[serde(default)]
+    pub nominal_nmse_null: f64,
     /// Mean relative error `‖Â − A‖_F / ‖A‖_F` of the learner's blended input gain `Â = ∂ẍ/∂u`
     /// against the true `A = J M⁻¹` (steps where the learner has one).
     #[serde(default)]
     pub gain_error: f64,
+    /// The scales behind the ratios: summed per-joint variance of `u*` (N²·m²) and mean
+    /// `‖u* − u0‖²` (N²·m²).
+    #[serde(default)]
+    pub u_star_variance: f64,
+    #[serde(default)]
+    pub u_star_cost: f64,
     /// Share of steps where no trained local controller was active (fallback to `u0`).
     pub fallback_share: f64,
     /// Largest change of the command between consecutive steps (N·m), learned and analytical.
@@ -161,6 +170,7 @@ impl Evaluator {
                 .input_gain(meas.q.as_slice(), meas.qd.as_slice(), &mut a_hat)?
                 .then(|| gain_error(self.osc.data(), &axes, &a_hat));
             let nom2: f64 = u0_hat.iter().zip(&u0).map(|(a, b)| (a - b).powi(2)).sum();
+            let nom_null2 = null_part2(self.osc.data(), &axes, &u0_hat, &u0);
             let e = axes
                 .iter()
                 .enumerate()
@@ -198,6 +208,7 @@ impl Evaluator {
                     acc.add(e, src == CommandSource::Fallback, &u, &u_star, &u0);
                     acc.null2 += null2;
                     acc.nom2 += nom2;
+                    acc.nom_null2 += nom_null2;
                     if let Some(g) = gain_err {
                         acc.gain_err += g;
                         acc.gain_count += 1;
@@ -228,6 +239,7 @@ struct Acc {
     c_s: f64,
     null2: f64,
     nom2: f64,
+    nom_null2: f64,
     gain_err: f64,
     gain_count: usize,
     fall: usize,
@@ -246,6 +258,7 @@ impl Acc {
             c_s: 0.0,
             null2: 0.0,
             nom2: 0.0,
+            nom_null2: 0.0,
             gain_err: 0.0,
             gain_count: 0,
             fall: 0,
@@ -281,6 +294,9 @@ impl Acc {
             command_cost_ratio: self.c_l / self.c_s.max(1e-12),
             command_nmse_null: self.null2 / c / var,
             nominal_nmse: self.nom2 / c / var,
+            nominal_nmse_null: self.nom_null2 / c / var,
+            u_star_variance: var,
+            u_star_cost: self.c_s / c,
             gain_error: self.gain_err / self.gain_count.max(1) as f64,
             fallback_share: self.fall as f64 / c,
             max_command_step: step_l,

@@ -249,7 +249,14 @@ impl Learner {
             / 3.0;
         self.torque_scale = torque.clone();
         let vs = self.cfg.velocity_scale;
-        self.gravity = Some(GravityModel::new(n, &self.cfg.gravity, vs, jacc, &torque)?);
+        self.gravity = Some(GravityModel::new(
+            n,
+            &self.cfg.gravity,
+            self.cfg.gravity_velocity_products,
+            vs,
+            jacc,
+            &torque,
+        )?);
         self.forward = Some(ForwardModel::new(
             n,
             m,

@@ -193,6 +193,7 @@ impl Learner {
                         p,
                         &self.cfg.rwr,
                         self.cfg.min_ess,
+                        self.cfg.dynamics_forgetting,
                     )?;
                 }
                 RfEvent::Pruned { id, .. } => self.locals.remove(id),

@@ -47,6 +47,7 @@ impl LocalControllers {
         p: usize,
         cfg: &RwrConfig,
         min_ess: f64,
+        dynamics_forgetting: f64,
     ) -> Result<()> {
         let trained = |l: &&Local| l.ess >= min_ess;
         let from = source
@@ -81,6 +82,7 @@ impl LocalControllers {
             min_ess: 0.0,
             tau_max: None,
             ridge_to_previous: false,
+            forgetting: dynamics_forgetting,
             ..cfg
         };
         let dynamics = OnlineRwr::new(3 * d + 1, m, dyn_cfg)?;

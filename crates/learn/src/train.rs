@@ -26,6 +26,11 @@ pub struct BabbleConfig {
     pub move_time: [f64; 2],
     /// Scale of the robot's PD gains while babbling. Default 3.
     pub gain_scale: f64,
+    /// White Gaussian torque noise added while babbling, as the PD error (rad) it equals: joint
+    /// `j` gets standard deviation `noise · K_Pq,j` (N·m). It makes the commands vary
+    /// independently of the state, so the receptive fields' local dynamics (`Â = ∂ẍ/∂u`) are
+    /// identifiable from babbling data. Default 0.02.
+    pub noise: f64,
 }
 
 impl Default for BabbleConfig {
@@ -35,6 +40,7 @@ impl Default for BabbleConfig {
             spread: 0.4,
             move_time: [0.6, 1.5],
             gain_scale: 3.0,
+            noise: 0.02,
         }
     }
 }
@@ -77,6 +83,45 @@ impl Default for TrainConfig {
             learn_on_policy: true,
             explore: true,
             seed: 0,
+        }
+    }
+}
+
+impl TrainConfig {
+    /// Checks every field's range; the error names the field.
+    pub fn validate(&self) -> crate::error::Result<()> {
+        let b = &self.babble;
+        let checks = [
+            ("minutes", self.minutes >= 0.0 && self.minutes.is_finite()),
+            ("babble.minutes", b.minutes >= 0.0 && b.minutes.is_finite()),
+            ("babble.spread", b.spread > 0.0 && b.spread.is_finite()),
+            (
+                "babble.move_time",
+                b.move_time[0] > 0.0
+                    && b.move_time[0] <= b.move_time[1]
+                    && b.move_time[1].is_finite(),
+            ),
+            (
+                "babble.gain_scale",
+                b.gain_scale > 0.0 && b.gain_scale.is_finite(),
+            ),
+            ("babble.noise", b.noise >= 0.0 && b.noise.is_finite()),
+            (
+                "episode_seconds",
+                self.episode_seconds > 0.0 && self.episode_seconds.is_finite(),
+            ),
+            ("reset_error", self.reset_error > 0.0),
+            (
+                "eval_every_minutes",
+                self.eval_every_minutes >= 0.0 && self.eval_every_minutes.is_finite(),
+            ),
+            ("learn_every", self.learn_every >= 1),
+        ];
+        match checks.iter().find(|(_, ok)| !ok) {
+            Some((what, _)) => Err(crate::error::LearnError::InvalidConfig(format!(
+                "training setting {what} is out of range: {self:?}"
+            ))),
+            None => Ok(()),
         }
     }
 }

@@ -7,6 +7,7 @@ use crate::learner::{Learner, LearnerStats};
 use osrl_control::Trajectory;
 use osrl_dynamics::{Measurement, Robot};
 use rand_chacha::ChaCha8Rng;
+use rand_distr::{Distribution, StandardNormal};
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
@@ -60,6 +61,7 @@ impl<R: Robot + ?Sized> Run<'_, R> {
         target: &[f64],
         total: f64,
         settle: f64,
+        noise: f64,
         limit: u64,
         evaluate: &mut dyn FnMut(&mut Learner) -> Result<EvalResult>,
         observe: &mut dyn FnMut(&Progress),
@@ -84,6 +86,14 @@ impl<R: Robot + ?Sized> Run<'_, R> {
                 self.cfg.babble.gain_scale,
                 &mut self.u,
             )?;
+            // Babbling noise: the torque of a `noise`-radian PD error, per joint.
+            if noise > 0.0 {
+                let kp = &self.learner.config().nominal.kp;
+                for (u, k) in self.u.iter_mut().zip(kp) {
+                    let z: f64 = StandardNormal.sample(&mut self.rng);
+                    *u += noise * k * z;
+                }
+            }
             self.step(evaluate, observe, progress)?;
         }
         Ok(())
@@ -132,6 +142,7 @@ pub fn train<R: Robot + ?Sized>(
     observe: &mut dyn FnMut(&Progress),
 ) -> Result<TrainSummary> {
     let wall = Instant::now();
+    cfg.validate()?;
     let dt = robot.control_period();
     let (n, m) = learner.dims();
     if robot.dof() != n || robot.task_dim() != m || axes.len() != m || cfg.learn_every == 0 {
@@ -192,6 +203,7 @@ pub fn train<R: Robot + ?Sized>(
             &target,
             total,
             0.3,
+            cfg.babble.noise,
             babble_end,
             evaluate,
             observe,
@@ -217,7 +229,16 @@ pub fn train<R: Robot + ?Sized>(
             .fold(0.0, f64::max);
         if off > 0.01 || run.prev.qd.amax() > 0.01 {
             let limit = run.total_steps;
-            run.pd_move(&home, 2.0, 1.0, limit, evaluate, observe, &mut progress)?;
+            run.pd_move(
+                &home,
+                2.0,
+                1.0,
+                0.0,
+                limit,
+                evaluate,
+                observe,
+                &mut progress,
+            )?;
             last_u = None;
             continue;
         }

@@ -66,6 +66,19 @@ fn training_reduces_the_tracking_error_and_beats_the_nominal_controller() {
         "{first:?} → {last:?}"
     );
     assert!(!last.diverged && last.tracking_rms_mm < 20.0, "{last:?}");
+    // The error decomposition is consistent: parts never exceed their wholes, and the learned
+    // input gain Â is within 50 % of the true J M⁻¹ along the path.
+    assert!(
+        last.command_nmse_null <= last.command_nmse * (1.0 + 1e-9),
+        "{last:?}"
+    );
+    assert!(
+        last.nominal_nmse_null <= last.nominal_nmse * (1.0 + 1e-9),
+        "{last:?}"
+    );
+    assert!(last.gain_error > 0.0 && last.gain_error < 0.5, "{last:?}");
+    // ĝ learns from the babbling only.
+    assert!(learner.gravity_frozen());
     // The nominal behaviour alone (PD to rest plus learned gravity) does not track the figure-8:
     // compare with a learner whose local controllers never act (min_ess unreachable).
     let spec = s.model.spec();
@@ -112,4 +125,21 @@ fn save_load_round_trips_and_bad_files_are_errors() {
     let mut version = bytes.clone();
     version[8] = 99;
     assert!(err(&version).contains("version"));
+}
+
+#[test]
+fn invalid_training_settings_are_refused_with_the_field_named() {
+    use osrl_learn::train::TrainConfig;
+    assert!(TrainConfig::default().validate().is_ok());
+    let mut cfg = TrainConfig::default();
+    cfg.babble.noise = -0.1;
+    let e = cfg.validate().unwrap_err().to_string();
+    assert!(e.contains("babble.noise"), "{e}");
+    let mut cfg = TrainConfig::default();
+    cfg.babble.move_time = [2.0, 1.0];
+    let e = cfg.validate().unwrap_err().to_string();
+    assert!(e.contains("babble.move_time"), "{e}");
+    let mut cfg = TrainConfig::default();
+    cfg.minutes = f64::NAN;
+    assert!(cfg.validate().unwrap_err().to_string().contains("minutes"));
 }
