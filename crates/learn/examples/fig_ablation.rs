@@ -1,7 +1,8 @@
-//! E6 (paper Sec. II, IV): the ablation — the same architecture with the reward weighting
-//! switched off (activation-weighted regression of `u` on the features: direct supervised
-//! inverse learning) and a global inverse model (reward weighting off, one receptive field that
-//! covers the whole state space), against RWR. Prints the final tracking error, command nMSE
+//! E6 (paper Sec. II, IV): the ablation ([`osrl_learn::Variant`]) — the default learner against
+//! the same architecture with the reward weighting and the hindsight shrinkage off
+//! (activation-weighted regression of `u − u0` on the features: direct supervised inverse
+//! learning), RWR as in the paper (full cost, no shrinkage), and a global inverse model
+//! (supervised, one receptive field that covers the whole state space). Prints the final tracking error, command nMSE
 //! against `u*` and command cost ratio of each; writes `<robot>_ablation.csv` (the learning
 //! curves, one row per variant and evaluation).
 //!
@@ -10,20 +11,7 @@
 
 mod common;
 use common::{curve_columns, write_csv, Args, Res, Setup, CURVE_HEADER};
-use osrl_learn::LearnerConfig;
-
-/// A variant: its name and how it changes the robot's default learner config.
-type Variant = (&'static str, fn(&mut LearnerConfig));
-
-const VARIANTS: [Variant; 3] = [
-    ("rwr", |_| {}),
-    ("unweighted", |c| c.reward_weighting = false),
-    ("global_unweighted", |c| {
-        c.reward_weighting = false;
-        c.forward.init_d = lwpr::MetricInit::Scalar(1e-8);
-        c.forward.update_d = false;
-    }),
-];
+use osrl_learn::Variant;
 
 fn main() -> Res<()> {
     let a = Args::parse(3.0, 1)?;
@@ -37,8 +25,9 @@ fn main() -> Res<()> {
     );
     println!("|---|---|---|---|---|---|");
     let mut cols: Vec<Vec<f64>> = vec![Vec::new(); CURVE_HEADER.len() + 1];
-    for (i, (name, variant)) in VARIANTS.iter().enumerate() {
-        let (_, summary) = s.train(a.minutes, a.seed, 1.0, variant)?;
+    for (i, v) in Variant::ALL.iter().enumerate() {
+        let name = v.key();
+        let (_, summary) = s.train(a.minutes, a.seed, 1.0, |c| *c = v.config(c.clone()))?;
         let e = summary
             .learning_curve
             .last()
@@ -58,7 +47,7 @@ fn main() -> Res<()> {
             cols[j + 1].extend(v);
         }
     }
-    let names: Vec<&str> = VARIANTS.iter().map(|v| v.0).collect();
+    let names: Vec<&str> = Variant::ALL.iter().map(|v| v.key()).collect();
     println!("variant index in the CSV: {names:?}");
     let mut head = vec!["variant".to_string()];
     head.extend(CURVE_HEADER.iter().map(|h| h.to_string()));

@@ -58,7 +58,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if let Ok(d) = std::env::var("GINITD") {
         lcfg.gravity.init_d = lwpr::MetricInit::Scalar(d.parse()?);
     }
-    lcfg.gravity_velocity_products = std::env::var("NOPROD").is_err();
+    if std::env::var("NOPROD").is_ok() {
+        lcfg.gravity_velocity_products = false;
+    }
     if std::env::var("GNOUPD").is_ok() {
         lcfg.gravity.update_d = false;
     }
@@ -108,7 +110,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         babble: osrl_learn::train::BabbleConfig {
             minutes: babble,
             noise: std::env::var("BNOISE").map_or(Ok(0.02), |s| s.parse())?,
-            spread: std::env::var("SPREAD").map_or(Ok(0.4), |s| s.parse())?,
+            spread: std::env::var("SPREAD")
+                .ok()
+                .map(|s| s.parse())
+                .transpose()?,
             ..Default::default()
         },
         ..TrainConfig::default()

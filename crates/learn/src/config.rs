@@ -105,10 +105,11 @@ pub struct LearnerConfig {
     pub dynamics_forgetting: f64,
     /// The gravity model's regressors include the velocity products `q̇ᵢq̇ⱼ` (inverse dynamics is
     /// quadratic in `q̇`; without them each local model's intercept, and so `ĝ`, carries the mean
-    /// centripetal torque of its samples). Default false: measured on planar3 (seed 1, kernel
-    /// width fixed at `init_d` 16) the `u0` error was 0.078 of the command variance with the
-    /// products and 0.023 without; with metric learning on, the products let `ĝ` collapse to one
-    /// receptive field.
+    /// centripetal torque of its samples). Default true. (Not a clear win yet: on planar3, seed 1,
+    /// babbling without noise, the `u0` error was 0.078 of the command variance with the products
+    /// and 0.023 without; every later measurement, with babbling noise, used them. With metric
+    /// learning on, the products let `ĝ` collapse to one receptive field, hence the fixed
+    /// kernels.)
     pub gravity_velocity_products: bool,
     /// The gravity model `ĝ` keeps learning during on-policy training (false: it learns from the
     /// babbling only; see [`crate::Learner::freeze_gravity`]). Default false.
@@ -172,7 +173,7 @@ impl Default for LearnerConfig {
             null_space_cap: None,
             null_space_shrink: 1.0,
             gravity_on_policy: false,
-            gravity_velocity_products: false,
+            gravity_velocity_products: true,
             dynamics_forgetting: 0.99995,
             exploration_cap: 0.05,
             max_abs_acceleration: 1000.0,

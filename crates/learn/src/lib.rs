@@ -38,6 +38,7 @@ pub mod io;
 mod learner;
 mod local;
 pub mod train;
+mod variant;
 
 pub use config::{CostKind, ExplorationKind, LearnerConfig, NominalConfig};
 pub use error::{LearnError, Result};
@@ -45,3 +46,4 @@ pub use forward::ForwardModel;
 pub use gravity::GravityModel;
 pub use learner::{CommandSource, Learner, LearnerStats};
 pub use local::LocalSummary;
+pub use variant::Variant;

@@ -20,8 +20,12 @@ pub struct BabbleConfig {
     /// Simulated minutes of babbling before on-policy learning. Default 2.
     pub minutes: f64,
     /// Targets are drawn uniformly within ± this of the home posture (rad), inside the joint
-    /// limits. Default 0.4.
-    pub spread: f64,
+    /// limits. Default `None`: `min(0.4, 1.4/n)` for `n` joints (0.4 rad for planar3, 0.2 for
+    /// sarcos7), so the babbling data stay dense near the path as the joint space grows — an
+    /// empirical rule from these measurements: on sarcos7 with 0.4 the on-policy episodes never
+    /// stopped aborting; with 0.26 seed 1 tracked after 11 minutes and seed 0 not after 10; with
+    /// 0.2 seed 0 tracked at 0.15 mm after 12; on planar3 0.2 gave a worse `ĝ` than 0.4.
+    pub spread: Option<f64>,
     /// Duration of one move (s), drawn uniformly in this range. Default [0.6, 1.5].
     pub move_time: [f64; 2],
     /// Scale of the robot's PD gains while babbling. Default 3.
@@ -37,7 +41,7 @@ impl Default for BabbleConfig {
     fn default() -> Self {
         Self {
             minutes: 4.0,
-            spread: 0.4,
+            spread: None,
             move_time: [0.6, 1.5],
             gain_scale: 3.0,
             noise: 0.02,
@@ -87,6 +91,15 @@ impl Default for TrainConfig {
     }
 }
 
+impl BabbleConfig {
+    /// The spread of the babbling targets for `n` joints (rad): the set value or the default
+    /// `min(0.4, 1.4/n)`.
+    pub fn spread_for(&self, n: usize) -> f64 {
+        self.spread
+            .unwrap_or_else(|| (1.4 / n.max(1) as f64).min(0.4))
+    }
+}
+
 impl TrainConfig {
     /// Checks every field's range; the error names the field.
     pub fn validate(&self) -> crate::error::Result<()> {
@@ -94,7 +107,10 @@ impl TrainConfig {
         let checks = [
             ("minutes", self.minutes >= 0.0 && self.minutes.is_finite()),
             ("babble.minutes", b.minutes >= 0.0 && b.minutes.is_finite()),
-            ("babble.spread", b.spread > 0.0 && b.spread.is_finite()),
+            (
+                "babble.spread",
+                b.spread.is_none_or(|s| s > 0.0 && s.is_finite()),
+            ),
             (
                 "babble.move_time",
                 b.move_time[0] > 0.0

@@ -186,11 +186,12 @@ pub fn train<R: Robot + ?Sized>(
     let babble_steps = (cfg.babble.minutes * per_min as f64).round() as u64;
     let mut target = vec![0.0; n];
     let babble_end = babble_steps.min(run.total_steps);
+    let spread = cfg.babble.spread_for(n);
     while run.steps < babble_end {
         for i in 0..n {
             let (lo, hi) = (
-                (q_min[i] + 0.05).max(home[i] - cfg.babble.spread),
-                (q_max[i] - 0.05).min(home[i] + cfg.babble.spread),
+                (q_min[i] + 0.05).max(home[i] - spread),
+                (q_max[i] - 0.05).min(home[i] + spread),
             );
             target[i] = uniform(&mut run.rng, lo, hi);
         }

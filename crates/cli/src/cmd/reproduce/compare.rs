@@ -44,7 +44,7 @@ pub fn e6(ctx: &Ctx, figs: &mut Vec<Fig>) -> Result<Value> {
         )?;
         figs.push(Fig::new(
             format!("E6/{robot}_ablation.svg"),
-            format!("E6 (paper Sec. II, IV): {robot}, RWR vs unweighted (supervised) inverse learning, RWR with the other cost, and a global unweighted inverse model — tracking, command error against u*, command cost over training."),
+            format!("E6 (paper Sec. II, IV): {robot}, RWR vs unweighted (supervised) inverse learning, RWR as in the paper (full cost, no shrinkage), and a global unweighted inverse model — tracking, command error against u*, command cost over training."),
         ));
         out.insert(robot.to_string(), Value::Object(rows));
     }

@@ -6,88 +6,14 @@ use crate::learned::{save_model, train_learner, Setup, Sidecar, SIDECAR_VERSION}
 use crate::progress;
 use anyhow::Result;
 use indicatif::{MultiProgress, ProgressBar};
-use lwpr::MetricInit;
 use osrl_control::ModelError;
 use osrl_learn::eval::{EvalResult, EvalSeries};
 use osrl_learn::train::{BabbleConfig, TrainConfig, TrainSummary};
-use osrl_learn::{CostKind, LearnerConfig};
+use osrl_learn::LearnerConfig;
+pub use osrl_learn::Variant;
 use rayon::prelude::*;
 use serde::Serialize;
 use std::path::Path;
-
-/// Which learner.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Variant {
-    /// The default learner: local controllers trained by reward-weighted regression.
-    Rwr,
-    /// Reward weighting off: activation-weighted regression of `u` on the features, i.e.
-    /// direct supervised inverse learning with the same partition (E6).
-    Unweighted,
-    /// RWR with the other cost than the default one: the paper's full `‖u − u0‖²` if the
-    /// default is the null-space cost `‖(I − Â⁺Â)(u − u0)‖²`, and vice versa (E6).
-    OtherCost,
-    /// Reward weighting off and one receptive field covering the whole state space: a global
-    /// linear inverse model (E6).
-    Global,
-}
-
-impl Variant {
-    pub const ALL: [Variant; 4] = [
-        Variant::Rwr,
-        Variant::Unweighted,
-        Variant::OtherCost,
-        Variant::Global,
-    ];
-
-    /// Key in `results.json`.
-    pub fn key(self) -> &'static str {
-        match self {
-            Variant::Rwr => "rwr",
-            Variant::Unweighted => "unweighted",
-            Variant::OtherCost if default_is_null_space() => "rwr_full_cost",
-            Variant::OtherCost => "rwr_null_space_cost",
-            Variant::Global => "global_unweighted",
-        }
-    }
-
-    /// Legend text.
-    pub fn label(self) -> &'static str {
-        match self {
-            Variant::Rwr => "RWR (default)",
-            Variant::Unweighted => "unweighted regression",
-            Variant::OtherCost if default_is_null_space() => "RWR, full cost (paper)",
-            Variant::OtherCost => "RWR, null-space cost",
-            Variant::Global => "global unweighted",
-        }
-    }
-
-    /// The learner config of this variant from the robot's default one.
-    pub fn config(self, base: LearnerConfig) -> LearnerConfig {
-        let mut c = base;
-        match self {
-            Variant::Rwr => {}
-            Variant::Unweighted => c.reward_weighting = false,
-            Variant::OtherCost => {
-                c.cost = match c.cost {
-                    CostKind::NullSpace => CostKind::Full,
-                    _ => CostKind::NullSpace,
-                }
-            }
-            Variant::Global => {
-                c.reward_weighting = false;
-                c.forward.init_d = MetricInit::Scalar(1e-8);
-                c.forward.update_d = false;
-            }
-        }
-        c
-    }
-}
-
-/// Whether the learner's default cost is the null-space one.
-fn default_is_null_space() -> bool {
-    LearnerConfig::default().cost == CostKind::NullSpace
-}
 
 /// One training run.
 #[derive(Clone, Debug, PartialEq, Serialize)]

@@ -184,7 +184,7 @@ const SECTIONS: [(&str, &str); 7] = [
     ("E3", "The learned controller tracking the figure-8 on both robots (paper Fig. 2a/2b, 3b). Final evaluation of each seed, no exploration."),
     ("E4", "Learned vs analytical optimal commands per joint along one cycle (paper Fig. 2c)."),
     ("E5", "Learning curves over simulated training time (paper Sec. V)."),
-    ("E6", "Ablation: reward weighting off (supervised inverse learning), the other cost (full ‖u − u0‖² or its null-space part), a global inverse model."),
+    ("E6", "Ablation: reward weighting off (supervised inverse learning), RWR as in the paper (full cost ‖u − u0‖², no hindsight null-space shrinkage), a global inverse model."),
     ("E7", "Model errors: analytical eq. 7 with a wrong model vs the learned controller trained on the true robot."),
 ];
 
