@@ -109,6 +109,7 @@ impl Lwpr {
             events,
             ..
         } = self;
+        ws.invalidate();
         ws.load_x(p, x);
         for o in 0..p.n_out {
             ws.yn[o] = y[o] / p.norm_out[o];
@@ -195,6 +196,13 @@ fn update_sub_dims(
     match (p.nk(), p.nr()) {
         (1, 1) => update_sub_impl::<1, 1>(p, sub, s, o0, ws, events, next_id),
         (2, 2) => update_sub_impl::<2, 2>(p, sub, s, o0, ws, events, next_id),
+        // The shapes of the learned controllers' models (crate `osrl-learn`): the forward model
+        // (kernel on `(q, q̇)`, regression on `(q, q̇, u)`) and the gravity model (kernel on `q`,
+        // regression on `(q, q̇, q̈)`) of the 7-DOF and the 3-DOF arms.
+        (14, 21) => update_sub_impl::<14, 21>(p, sub, s, o0, ws, events, next_id),
+        (7, 21) => update_sub_impl::<7, 21>(p, sub, s, o0, ws, events, next_id),
+        (6, 9) => update_sub_impl::<6, 9>(p, sub, s, o0, ws, events, next_id),
+        (3, 9) => update_sub_impl::<3, 9>(p, sub, s, o0, ws, events, next_id),
         _ => update_sub_impl::<0, 0>(p, sub, s, o0, ws, events, next_id),
     }
 }
@@ -264,7 +272,8 @@ fn update_sub_impl<const NK: usize, const NR: usize>(
             }
             out.check_grow(p);
             pls::forget(out, p.cfg.tau_lambda, p.cfg.final_lambda);
-            pls::update_slope(out, nr);
+            // The slope is recomputed when a prediction needs it (`Pls::refresh_slope`).
+            out.slope_stale = true;
         }
         if rf.trustworthy {
             sum_w += w;
@@ -341,6 +350,9 @@ fn update_sub_impl<const NK: usize, const NR: usize>(
         });
         if ws.active.capacity() < sub.rfs.len() {
             ws.active.reserve(sub.rfs.len());
+        }
+        if ws.act_out.capacity() < sub.rfs.len() {
+            ws.act_out.reserve(sub.rfs.len());
         }
         return (w_max, true, false);
     }

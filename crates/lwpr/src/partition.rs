@@ -6,7 +6,7 @@
 use crate::error::check_vec;
 use crate::model::Lwpr;
 use crate::rf::{Rf, SubModel};
-use crate::scratch::quad;
+use crate::scratch::{quad, same_bits};
 use crate::LwprError;
 use nalgebra::DMatrix;
 use serde::{Deserialize, Serialize};
@@ -121,7 +121,8 @@ impl RfView<'_> {
     /// with shared RFs).
     pub fn local_model(&self, o: usize) -> Option<LocalModel> {
         let p = &self.model.p;
-        let pls = self.rf.outs.get(o)?;
+        let mut pls = self.rf.outs.get(o)?.clone();
+        pls.refresh_slope(p.nr());
         let no = p.norm_out[if p.cfg.shared_rfs { o } else { self.s }];
         Some(LocalModel {
             offset: pls.beta0 * no,
@@ -172,10 +173,73 @@ impl Lwpr {
     ) -> Result<(), LwprError> {
         check_vec("x", x, self.p.n_in)?;
         self.sub(sub)?;
+        // A repeated query (same sub-model, input and cutoff bits) on an unchanged model.
+        let key = (sub, cutoff.to_bits());
+        let ws = &mut self.ws;
+        if ws.act_cache == Some(key) && same_bits(x, &ws.act_x) {
+            out.clear();
+            out.extend_from_slice(&ws.act_out);
+            return Ok(());
+        }
+        #[cfg(target_arch = "x86_64")]
+        if crate::simd::has_avx2() {
+            // SAFETY: the CPU supports AVX2 (checked at run time).
+            unsafe { self.activations_avx2(sub, x, cutoff, out) };
+        } else {
+            self.activations_dims(sub, x, cutoff, out);
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        self.activations_dims(sub, x, cutoff, out);
+        // Kept for the next query unless that would allocate (the buffer grows with the model).
+        let ws = &mut self.ws;
+        ws.act_cache = None;
+        if ws.act_out.capacity() >= out.len() {
+            ws.act_out.clear();
+            ws.act_out.extend_from_slice(out);
+            ws.act_x.copy_from_slice(x);
+            ws.act_cache = Some(key);
+        }
+        Ok(())
+    }
+
+    /// [`Lwpr::activations`] compiled with AVX2 (same results, see `crate::simd`).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn activations_avx2(
+        &mut self,
+        sub: usize,
+        x: &[f64],
+        cutoff: f64,
+        out: &mut Vec<Activation>,
+    ) {
+        self.activations_dims(sub, x, cutoff, out)
+    }
+
+    /// Kernel spaces of the learned controllers' forward models get a copy with the dimension
+    /// as a constant (as the update does).
+    #[inline(always)]
+    fn activations_dims(&mut self, sub: usize, x: &[f64], cutoff: f64, out: &mut Vec<Activation>) {
+        match self.p.nk() {
+            14 => self.activations_core::<14>(sub, x, cutoff, out),
+            6 => self.activations_core::<6>(sub, x, cutoff, out),
+            _ => self.activations_core::<0>(sub, x, cutoff, out),
+        }
+    }
+
+    /// The activation pass; `NK > 0` fixes the kernel dimension (0: taken from the model).
+    #[inline(always)]
+    fn activations_core<const NK: usize>(
+        &mut self,
+        sub: usize,
+        x: &[f64],
+        cutoff: f64,
+        out: &mut Vec<Activation>,
+    ) {
         let Lwpr { p, subs, ws, .. } = self;
         ws.load_x(p, x);
         let s = &subs[sub];
-        let (nk, ml, diag) = (p.nk(), p.mlen(), p.cfg.diag_only);
+        let (ml, diag) = (p.mlen(), p.cfg.diag_only);
+        let nk = if NK > 0 { NK } else { p.nk() };
         let kern = if diag { &s.ds } else { &s.ms };
         let qb = p.q_bound(cutoff);
         out.clear();
@@ -185,7 +249,7 @@ impl Lwpr {
                 diag,
                 c,
                 &kern[i * ml..(i + 1) * ml],
-                &ws.xk,
+                &ws.xk[..nk],
                 &mut ws.met.dx,
                 qb,
             );
@@ -196,6 +260,5 @@ impl Lwpr {
                 }
             }
         }
-        Ok(())
     }
 }

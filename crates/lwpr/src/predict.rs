@@ -4,7 +4,8 @@
 use crate::error::{check_len, check_vec};
 use crate::model::Lwpr;
 use crate::pls::{dot, project};
-use crate::scratch::quad;
+use crate::rf::SubModel;
+use crate::scratch::{quad, same_bits};
 use crate::LwprError;
 
 /// How much support a prediction had.
@@ -93,6 +94,30 @@ impl Lwpr {
         strict: bool,
     ) -> Result<Support, LwprError> {
         check_vec("x", x, self.p.n_in)?;
+        // A repeated query (same input bits, same kind) on an unchanged model: the results are
+        // still in the buffers.
+        let key = (want as u8, strict);
+        if let Some((k, res)) = self.ws.pred_cache {
+            if k == key && same_bits(x, &self.ws.pred_x) {
+                return res.map_err(|output| LwprError::NoActiveRf { output });
+            }
+        }
+        let res = self.predict_compute(x, want, strict);
+        self.ws.pred_cache = match &res {
+            Ok(s) => Some((key, Ok(*s))),
+            Err(LwprError::NoActiveRf { output }) => Some((key, Err(*output))),
+            Err(_) => None,
+        };
+        self.ws.pred_x.copy_from_slice(x);
+        res
+    }
+
+    fn predict_compute(
+        &mut self,
+        x: &[f64],
+        want: Want,
+        strict: bool,
+    ) -> Result<Support, LwprError> {
         #[cfg(target_arch = "x86_64")]
         if crate::simd::has_avx2() {
             // SAFETY: the CPU supports AVX2 (checked at run time).
@@ -119,6 +144,11 @@ impl Lwpr {
         match (self.p.nk(), self.p.nr()) {
             (1, 1) => self.predict_core::<1, 1>(x, want, strict),
             (2, 2) => self.predict_core::<2, 2>(x, want, strict),
+            // The learned controllers' model shapes, as in the update.
+            (14, 21) => self.predict_core::<14, 21>(x, want, strict),
+            (7, 21) => self.predict_core::<7, 21>(x, want, strict),
+            (6, 9) => self.predict_core::<6, 9>(x, want, strict),
+            (3, 9) => self.predict_core::<3, 9>(x, want, strict),
             _ => self.predict_core::<0, 0>(x, want, strict),
         }
     }
@@ -142,7 +172,7 @@ impl Lwpr {
         if want == Want::Jac {
             ws.jac.iter_mut().for_each(|v| *v = 0.0);
         }
-        for (s, sub) in subs.iter().enumerate() {
+        for (s, sub) in subs.iter_mut().enumerate() {
             let o0 = s * ny;
             for o in o0..o0 + ny {
                 ws.yacc[o] = 0.0;
@@ -152,13 +182,19 @@ impl Lwpr {
             if want == Want::Jac {
                 ws.dwdx.iter_mut().for_each(|v| *v = 0.0);
             }
-            let kern = if diag { &sub.ds } else { &sub.ms };
+            let SubModel {
+                rfs,
+                centers,
+                ms,
+                ds,
+            } = sub;
+            let kern = if diag { &*ds } else { &*ms };
             let mut sum_w = 0.0;
-            for (i, rf) in sub.rfs.iter().enumerate() {
+            for (i, rf) in rfs.iter_mut().enumerate() {
                 if !rf.trustworthy {
                     continue;
                 }
-                let c = &sub.centers[i * nk..(i + 1) * nk];
+                let c = &centers[i * nk..(i + 1) * nk];
                 let md = &kern[i * ml..(i + 1) * ml];
                 let q = quad(diag, c, md, &ws.xk[..nk], &mut ws.met.dx, qb);
                 if q >= qb {
@@ -176,7 +212,7 @@ impl Lwpr {
                 }
                 if want == Want::Jac {
                     // ∂w/∂x_K = 2 (dw/dq) D (x − c).
-                    let dd = &sub.ds[i * ml..(i + 1) * ml];
+                    let dd = &ds[i * ml..(i + 1) * ml];
                     for k in 0..nk {
                         let dxk = ws.xk[k] - c[k];
                         ws.ddx[k] = if diag { 2.0 * dwdq * dd[k] * dxk } else { 0.0 };
@@ -192,6 +228,11 @@ impl Lwpr {
                     }
                     for k in 0..nk {
                         ws.dwdx[k] += ws.ddx[k];
+                    }
+                }
+                if want != Want::Conf {
+                    for pls in rf.outs.iter_mut() {
+                        pls.refresh_slope(nr);
                     }
                 }
                 for (lo, pls) in rf.outs.iter().enumerate() {

@@ -47,8 +47,38 @@ pub(crate) struct Pls {
     pub ssp: f64,
     /// `sum_e2`.
     pub sum_e2: f64,
-    /// The local model's slope `∂ŷ/∂x_R` (normalised units), kept current for fast prediction.
+    /// The local model's slope `∂ŷ/∂x_R` (normalised units), recomputed from the PLS state
+    /// when a prediction needs it (see `slope_stale`); always current in the saved format.
     pub slope: Vec<f64>,
+    /// The model changed since `slope` was computed: an update only sets this flag, and the
+    /// slope is recomputed (by [`crate::pls::update_slope`], the same arithmetic on the same
+    /// state, so the same bits) by the next prediction that uses it or by serialisation.
+    #[serde(skip)]
+    pub slope_stale: bool,
+}
+
+impl Pls {
+    /// Recomputes `slope` if it is stale.
+    #[inline(always)]
+    pub fn refresh_slope(&mut self, nr: usize) {
+        if self.slope_stale {
+            crate::pls::update_slope(self, nr);
+            self.slope_stale = false;
+        }
+    }
+}
+
+/// Serialises the PLS models of an RF with current slopes (stale ones recomputed on a copy).
+fn serialize_outs<S: serde::Serializer>(outs: &Vec<Pls>, s: S) -> Result<S::Ok, S::Error> {
+    if !outs.iter().any(|o| o.slope_stale) {
+        return outs.serialize(s);
+    }
+    let mut fresh = outs.clone();
+    for o in &mut fresh {
+        let nr = o.slope.len();
+        o.refresh_slope(nr);
+    }
+    fresh.serialize(s)
 }
 
 impl Pls {
@@ -85,6 +115,7 @@ impl Pls {
             ssp: 0.0,
             sum_e2: 0.0,
             slope: vec![0.0; nr],
+            slope_stale: false,
         };
         for j in 0..n_reg {
             s.u[j * nr + j] = 1.0;
@@ -168,6 +199,7 @@ pub(crate) struct Rf {
     /// `n_data[0] > 2·nr` seen at an update.
     pub trustworthy: bool,
     /// One PLS model per output this RF regresses.
+    #[serde(serialize_with = "serialize_outs")]
     pub outs: Vec<Pls>,
 }
 

@@ -41,6 +41,19 @@ pub(crate) struct Scratch {
     pub support: Vec<f64>,
     /// Prediction made during the last update (normalised until the end of the update).
     pub last_yp: Vec<f64>,
+    /// The last prediction's key (kind, strict) and outcome (`Err(output)`: no RF active for
+    /// that output), valid while the model is unchanged; its results are in `y`, `conf`, `jac`
+    /// and `support`, its input in `pred_x`. Cleared by every update.
+    pub pred_cache: Option<((u8, bool), Result<crate::Support, usize>)>,
+    /// Input of the cached prediction.
+    pub pred_x: Vec<f64>,
+    /// The last activation query's (sub-model, cutoff bits), valid while the model is
+    /// unchanged; its input is in `act_x`, its result in `act_out`. Cleared by every update.
+    pub act_cache: Option<(usize, u64)>,
+    /// Input of the cached activation query.
+    pub act_x: Vec<f64>,
+    /// Result of the cached activation query.
+    pub act_out: Vec<crate::Activation>,
 }
 
 impl Scratch {
@@ -65,7 +78,19 @@ impl Scratch {
             ddx: vec![0.0; nk],
             support: vec![0.0; n_out],
             last_yp: vec![f64::NAN; n_out],
+            pred_cache: None,
+            pred_x: vec![0.0; n_in],
+            act_cache: None,
+            act_x: vec![0.0; n_in],
+            act_out: Vec::with_capacity(n_rf.max(64)),
         }
+    }
+
+    /// Forgets the cached query results (the model changed).
+    #[inline]
+    pub fn invalidate(&mut self) {
+        self.pred_cache = None;
+        self.act_cache = None;
     }
 
     /// Normalises `x` into `xn`, `xk`, `xr`.
@@ -80,6 +105,12 @@ impl Scratch {
             self.xr[k] = self.xn[i];
         }
     }
+}
+
+/// Whether `a` and `b` hold the same bits (so a query at `a` repeats one at `b` exactly).
+#[inline]
+pub(crate) fn same_bits(a: &[f64], b: &[f64]) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
 }
 
 /// `q = (x − c)ᵀ D (x − c)`: from the diagonal of `D`, or as `‖M (x − c)‖²` with the
