@@ -111,7 +111,7 @@ pub(crate) fn update_regression(
         let sj = dot(&pls.u[j * nr..(j + 1) * nr], xj);
         s[j] = sj;
         if j + 1 < r {
-            let (pj, rest) = (&pls.p[j * nr..(j + 1) * nr], &mut rest[..nr]);
+            let pj = &pls.p[j * nr..(j + 1) * nr];
             for i in 0..nr {
                 rest[i] = xj[i] - pj[i] * sj;
             }
@@ -131,29 +131,29 @@ pub(crate) fn update_regression(
         let wt = w * t;
         let wsj = w * s[j];
         let xj = &xres[j * nr..(j + 1) * nr];
-        // The scalars first, so that one pass updates SXresYres, its norm, SSXres and p (the
-        // same operations as in separate passes; the serial norm sum overlaps the rest).
-        pls.ss_s2[j] = lam * pls.ss_s2[j] + s[j] * wsj;
-        pls.ss_yres[j] = lam * pls.ss_yres[j] + t * wsj;
-        let inv_s2 = 1.0 / pls.ss_s2[j];
-        pls.beta[j] = pls.ss_yres[j] * inv_s2;
         let sxy = &mut pls.sxy[j * nr..(j + 1) * nr];
-        let ssx = &mut pls.ssx[j * nr..(j + 1) * nr];
-        let pj = &mut pls.p[j * nr..(j + 1) * nr];
         let mut norm2 = 0.0;
         for i in 0..nr {
             let v = sxy[i] * lam_slow + wt * xj[i];
             sxy[i] = v;
             norm2 += v * v;
-            let c = lam * ssx[i] + wsj * xj[i];
-            ssx[i] = c;
-            pj[i] = c * inv_s2;
         }
         if norm2 > 1e-24 {
             let inv = 1.0 / norm2.sqrt();
             for (u, &v) in pls.u[j * nr..(j + 1) * nr].iter_mut().zip(sxy.iter()) {
                 *u = v * inv;
             }
+        }
+        pls.ss_s2[j] = lam * pls.ss_s2[j] + s[j] * wsj;
+        pls.ss_yres[j] = lam * pls.ss_yres[j] + t * wsj;
+        let inv_s2 = 1.0 / pls.ss_s2[j];
+        pls.beta[j] = pls.ss_yres[j] * inv_s2;
+        let ssx = &mut pls.ssx[j * nr..(j + 1) * nr];
+        let pj = &mut pls.p[j * nr..(j + 1) * nr];
+        for i in 0..nr {
+            let v = lam * ssx[i] + wsj * xj[i];
+            ssx[i] = v;
+            pj[i] = v * inv_s2;
         }
         ws2 += wsj * wsj * inv_s2;
     }
