@@ -64,6 +64,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if std::env::var("GNOUPD").is_ok() {
         lcfg.gravity.update_d = false;
     }
+    if std::env::var("BILIN").is_ok() {
+        lcfg.dynamics_bilinear = true;
+    }
     if let Ok(v) = std::env::var("DFORGET") {
         lcfg.dynamics_forgetting = v.parse()?;
     }

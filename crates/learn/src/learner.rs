@@ -84,7 +84,7 @@ impl Learner {
             z: vec![0.0; n],
             ui: vec![0.0; n],
             target: vec![0.0; n],
-            phi_d: vec![0.0; 3 * n + 1],
+            phi_d: vec![0.0; crate::local::dynamics_features(n, cfg.dynamics_bilinear)],
             a_hat: vec![0.0; m * n],
             y: vec![0.0; m],
             s: vec![0.0; m * m],
@@ -135,7 +135,7 @@ impl Learner {
             return Ok(false);
         };
         f.activations(q, qd, self.cfg.activation_cutoff, &mut self.ws.acts)?;
-        Ok(step::blended_gain(&self.locals, &self.ws.acts, n, m, a))
+        Ok(step::blended_gain(&self.locals, &self.ws.acts, q, n, m, a))
     }
     /// Stops (or resumes) the learning of the gravity model `ĝ`. The training driver freezes it
     /// when on-policy learning starts unless `gravity_on_policy` is set: along a single path `q̇`

@@ -124,7 +124,7 @@ impl Learner {
             let cap = self.cfg.exploration_cap;
             if self.cfg.exploration == ExplorationKind::NullSpace {
                 // z ~ N(0, σ² I) projected onto the null space of Â: z − Âᵀ (Â Âᵀ)⁻¹ Â z.
-                let known = blended_gain(&self.locals, &self.ws.acts, n, m, &mut self.ws.a_hat);
+                let known = blended_gain(&self.locals, &self.ws.acts, q, n, m, &mut self.ws.a_hat);
                 let ws = &mut self.ws;
                 let ns_cap = self.cfg.null_space_cap.unwrap_or(f64::INFINITY);
                 for (z, scale) in ws.du.iter_mut().zip(&self.torque_scale) {
@@ -193,7 +193,13 @@ impl Learner {
                         p,
                         &self.cfg.rwr,
                         self.cfg.min_ess,
-                        self.cfg.dynamics_forgetting,
+                        crate::local::DynamicsSpec {
+                            features: crate::local::dynamics_features(
+                                n,
+                                self.cfg.dynamics_bilinear,
+                            ),
+                            forgetting: self.cfg.dynamics_forgetting,
+                        },
                     )?;
                 }
                 RfEvent::Pruned { id, .. } => self.locals.remove(id),
@@ -215,7 +221,7 @@ impl Learner {
         let fwd = self.forward.as_mut().expect("models exist");
         fwd.activations(q, qd, self.cfg.activation_cutoff, &mut self.ws.acts)?;
         let full: f64 = self.ws.du.iter().map(|v| v * v).sum();
-        let known = blended_gain(&self.locals, &self.ws.acts, n, m, &mut self.ws.a_hat);
+        let known = blended_gain(&self.locals, &self.ws.acts, q, n, m, &mut self.ws.a_hat);
         // Hindsight null-space shrinkage of the target (κ = 0: the paper's relabelling).
         let kappa = self.cfg.null_space_shrink;
         if kappa > 0.0 && known && self.cfg.residual {
@@ -261,6 +267,14 @@ impl Learner {
             };
             for i in 0..n {
                 phi_d[2 * n + i] = q[i] - local.center[i];
+            }
+            // Bilinear features u_j (q_k − c_k), if any.
+            if phi_d.len() > 3 * n + 1 {
+                for j in 0..n {
+                    for k in 0..n {
+                        phi_d[3 * n + 1 + j * n + k] = u[j] * phi_d[2 * n + k];
+                    }
+                }
             }
             local
                 .dynamics
@@ -388,6 +402,7 @@ fn cholesky(s: &mut [f64], m: usize) -> bool {
 pub(crate) fn blended_gain(
     locals: &crate::local::LocalControllers,
     acts: &[lwpr::Activation],
+    q: &[f64],
     n: usize,
     m: usize,
     a: &mut [f64],
@@ -402,9 +417,17 @@ pub(crate) fn blended_gain(
             continue;
         }
         let theta = local.dynamics.theta();
+        // With bilinear features, Â(q) = Θ_u + Σ_k (q_k − c_k) Θ_{u_j q_k}.
+        let bilinear = theta.nrows() > 3 * n + 1;
         for k in 0..m {
             for j in 0..n {
-                a[k * n + j] += act.w * theta[(j, k)];
+                let mut g = theta[(j, k)];
+                if bilinear {
+                    for i in 0..n {
+                        g += (q[i] - local.center[i]) * theta[(3 * n + 1 + j * n + i, k)];
+                    }
+                }
+                a[k * n + j] += act.w * g;
             }
         }
         sum_w += act.w;

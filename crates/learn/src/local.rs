@@ -26,6 +26,19 @@ pub struct Local {
     pub ess: f64,
 }
 
+/// The shape of the local dynamics regressions: number of features and forgetting factor.
+#[derive(Clone, Copy, Debug)]
+pub struct DynamicsSpec {
+    pub features: usize,
+    pub forgetting: f64,
+}
+
+/// Features of the local dynamics regression for `n` joints: `[u, q̇, q − c, 1]` and, if
+/// `bilinear`, `u_j (q_k − c_k)`.
+pub fn dynamics_features(n: usize, bilinear: bool) -> usize {
+    3 * n + 1 + if bilinear { n * n } else { 0 }
+}
+
 /// All local controllers, keyed by the stable id of their receptive field.
 #[derive(Clone, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub struct LocalControllers {
@@ -47,7 +60,7 @@ impl LocalControllers {
         p: usize,
         cfg: &RwrConfig,
         min_ess: f64,
-        dynamics_forgetting: f64,
+        dynamics: DynamicsSpec,
     ) -> Result<()> {
         let trained = |l: &&Local| l.ess >= min_ess;
         let from = source
@@ -82,10 +95,10 @@ impl LocalControllers {
             min_ess: 0.0,
             tau_max: None,
             ridge_to_previous: false,
-            forgetting: dynamics_forgetting,
+            forgetting: dynamics.forgetting,
             ..cfg
         };
-        let dynamics = OnlineRwr::new(3 * d + 1, m, dyn_cfg)?;
+        let dynamics = OnlineRwr::new(dynamics.features, m, dyn_cfg)?;
         self.map.insert(
             id,
             Local {
