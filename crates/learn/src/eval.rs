@@ -165,12 +165,13 @@ impl Evaluator {
                 &mut u_star,
             )?;
             learner.nominal(meas.q.as_slice(), meas.qd.as_slice(), &mut u0_hat)?;
-            let null2 = null_part2(self.osc.data(), &axes, &u, &u_star);
-            let gain_err = learner
-                .input_gain(meas.q.as_slice(), meas.qd.as_slice(), &mut a_hat)?
-                .then(|| gain_error(self.osc.data(), &axes, &a_hat));
+            // The error split against the true B = J M⁻¹ at this state (0 where B is singular).
+            let truth = TrueGain::new(self.osc.data(), &axes);
+            let null2 = truth.as_ref().map_or(0.0, |t| t.null_part2(&u, &u_star));
+            let nom_null2 = truth.as_ref().map_or(0.0, |t| t.null_part2(&u0_hat, &u0));
+            let has_gain = learner.input_gain(meas.q.as_slice(), meas.qd.as_slice(), &mut a_hat)?;
+            let gain_err = truth.filter(|_| has_gain).map(|t| t.gain_error(&a_hat));
             let nom2: f64 = u0_hat.iter().zip(&u0).map(|(a, b)| (a - b).powi(2)).sum();
-            let nom_null2 = null_part2(self.osc.data(), &axes, &u0_hat, &u0);
             let e = axes
                 .iter()
                 .enumerate()
@@ -306,34 +307,34 @@ impl Acc {
     }
 }
 
-/// The true input gain `B = J M⁻¹` (task rows, m×n) of the dynamics in `data`, if `M` inverts.
-fn true_gain(data: &osrl_dynamics::Data, axes: &[usize]) -> Option<nalgebra::DMatrix<f64>> {
-    let n = data.mass.nrows();
-    let j = nalgebra::DMatrix::from_fn(axes.len(), n, |r, c| data.jac[(axes[r], c)]);
-    Some(j * data.mass.clone().try_inverse()?)
+/// The true input gain `B = J M⁻¹` (task rows, m×n) at one state and `(B Bᵀ)⁻¹`, formed once
+/// per evaluation step for the error split. Allocates (evaluation only, not a control path).
+struct TrueGain {
+    b: nalgebra::DMatrix<f64>,
+    s_inv: nalgebra::DMatrix<f64>,
 }
 
-/// `‖Â − B‖_F / ‖B‖_F` for the learner's `Â` (m×n row-major).
-fn gain_error(data: &osrl_dynamics::Data, axes: &[usize], a_hat: &[f64]) -> f64 {
-    let Some(b) = true_gain(data, axes) else {
-        return f64::NAN;
-    };
-    let n = b.ncols();
-    let d = nalgebra::DMatrix::from_fn(b.nrows(), n, |r, c| a_hat[r * n + c]) - &b;
-    d.norm() / b.norm().max(1e-300)
-}
+impl TrueGain {
+    /// From the dynamics in `data`; `None` if `M` or `B Bᵀ` does not invert.
+    fn new(data: &osrl_dynamics::Data, axes: &[usize]) -> Option<Self> {
+        let n = data.mass.nrows();
+        let j = nalgebra::DMatrix::from_fn(axes.len(), n, |r, c| data.jac[(axes[r], c)]);
+        let b = j * data.mass.clone().try_inverse()?;
+        let s_inv = (&b * b.transpose()).try_inverse()?;
+        Some(Self { b, s_inv })
+    }
 
-/// `‖(I − B⁺B)(u − u*)‖²` with the true `B = J M⁻¹` (task rows) of the dynamics in `data`; 0 if
-/// `B Bᵀ` is singular. Allocates (evaluation only, not a control path).
-fn null_part2(data: &osrl_dynamics::Data, axes: &[usize], u: &[f64], u_star: &[f64]) -> f64 {
-    let n = u.len();
-    let Some(b) = true_gain(data, axes) else {
-        return 0.0;
-    };
-    let e = nalgebra::DVector::from_fn(n, |i, _| u[i] - u_star[i]);
-    let Some(s_inv) = (&b * b.transpose()).try_inverse() else {
-        return 0.0;
-    };
-    let range = b.transpose() * (s_inv * (&b * &e));
-    (e - range).norm_squared()
+    /// `‖Â − B‖_F / ‖B‖_F` for the learner's `Â` (m×n row-major).
+    fn gain_error(&self, a_hat: &[f64]) -> f64 {
+        let n = self.b.ncols();
+        let d = nalgebra::DMatrix::from_fn(self.b.nrows(), n, |r, c| a_hat[r * n + c]) - &self.b;
+        d.norm() / self.b.norm().max(1e-300)
+    }
+
+    /// `‖(I − B⁺B)(u − v)‖²`, the part of `u − v` in the null space of `B`.
+    fn null_part2(&self, u: &[f64], v: &[f64]) -> f64 {
+        let e = nalgebra::DVector::from_fn(u.len(), |i, _| u[i] - v[i]);
+        let range = self.b.transpose() * (&self.s_inv * (&self.b * &e));
+        (e - range).norm_squared()
+    }
 }

@@ -310,6 +310,20 @@ pub(crate) fn libm_exp(nk: usize) -> bool {
     nk <= 4
 }
 
+/// `α = e^b` element-wise, by `f64::exp` if `libm` else by [`exp_fast`] (see [`libm_exp`]).
+#[inline(always)]
+pub(crate) fn exp_into(libm: bool, b: &[f64], alpha: &mut [f64]) {
+    if libm {
+        for (a, v) in alpha.iter_mut().zip(b) {
+            *a = v.exp();
+        }
+    } else {
+        for (a, v) in alpha.iter_mut().zip(b) {
+            *a = exp_fast(*v);
+        }
+    }
+}
+
 /// The step on a contiguous run of free elements of `M`: on entry `g` holds `∂J2/∂M`, on exit
 /// the total gradient `T·∂J/∂M`.
 #[allow(clippy::too_many_arguments)]
@@ -341,15 +355,7 @@ fn step_row(
             let aux = (c.rate * g[k] * hm[k]).clamp(-0.1, 0.1);
             b[k] = (b[k] - aux).clamp(-10.0, 10.0);
         }
-        if c.libm_exp {
-            for k in 0..len {
-                alpha[k] = b[k].exp();
-            }
-        } else {
-            for k in 0..len {
-                alpha[k] = exp_fast(b[k]);
-            }
-        }
+        exp_into(c.libm_exp, &b[..len], &mut alpha[..len]);
         for k in 0..len {
             let gg = c.a * ddj2[k] + c.b * ddw[k] + c.c * dwdm[k] * dwdm[k];
             hm[k] = hm[k] * (1.0 - alpha[k] * gg).max(0.0) - alpha[k] * g[k];

@@ -6,7 +6,7 @@
 
 use crate::metric::{Coef, MetricAcc, MetricScratch};
 use crate::params::Params;
-use crate::simd::{dot, exp_fast, max_abs};
+use crate::simd::{dot, max_abs};
 
 /// The row stride of the padded buffers: `nk` rounded up to a multiple of 4.
 #[inline(always)]
@@ -179,15 +179,7 @@ pub(crate) fn full_step(
                 let aux = (c.rate * gj * hrow[j]).clamp(-0.1, 0.1);
                 brow[j] = (brow[j] - aux).clamp(-10.0, 10.0);
             }
-            if c.libm_exp {
-                for j in 0..len {
-                    arow[j] = brow[j].exp();
-                }
-            } else {
-                for j in 0..len {
-                    arow[j] = exp_fast(brow[j]);
-                }
-            }
+            crate::metric::exp_into(c.libm_exp, &brow[..len], &mut arow[..len]);
             for j in 0..len {
                 let a = arow[j];
                 hrow[j] = hrow[j] * (1.0 - a * gg[j]).max(0.0) - a * g[j];
