@@ -37,14 +37,32 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if let Ok(v) = std::env::var("VS") {
         lcfg.velocity_scale = v.parse()?;
     }
+    if let Ok(d) = std::env::var("GINITD") {
+        lcfg.gravity.init_d = lwpr::MetricInit::Scalar(d.parse()?);
+    }
+    if let Ok(v) = std::env::var("GADD") {
+        lcfg.gravity.add_threshold = v.parse()?;
+    }
+    if let Ok(v) = std::env::var("GWGEN") {
+        lcfg.gravity.w_gen = v.parse()?;
+    }
+    if std::env::var("NOPROD").is_ok() {
+        lcfg.gravity_velocity_products = false;
+    }
     let mut learner = Learner::new(n, m, 0.002, lcfg)?;
     let cfg = TrainConfig {
         minutes,
         babble: BabbleConfig {
             minutes,
+            noise: std::env::var("BNOISE").map_or(Ok(0.02), |s| s.parse())?,
+            spread: std::env::var("SPREAD")
+                .ok()
+                .map(|s| s.parse())
+                .transpose()?,
             ..BabbleConfig::default()
         },
         eval_every_minutes: 0.0,
+        seed: std::env::var("SEED").map_or(Ok(0), |s| s.parse())?,
         ..TrainConfig::default()
     };
     let axes = model.task_axes().to_vec();
@@ -73,6 +91,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut sim3 = SimRobot::new(model.clone(), SimConfig::default())?;
     sim3.reset(&reach.q_start, &vec![0.0; n])?;
     let mut count = 0;
+    let mut excursion: f64 = 0.0;
     let (mut a_err, mut a_count) = (0.0, 0);
     for k in (0..k_all).step_by(10) {
         // Reconstruct the state by replaying: cheaper to re-run the analytical controller.
@@ -88,6 +107,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             &mut xdd_ref,
         );
         let (q, qd) = (meas.q.as_slice(), meas.qd.as_slice());
+        for i in 0..n {
+            excursion = excursion.max((q[i] - reach.q_start[i]).abs());
+        }
         let src = learner.command::<rand_chacha::ChaCha8Rng>(q, qd, &xdd_ref, None, &mut u)?;
         fb += (src == osrl_learn::CommandSource::Fallback) as usize;
         osc.nominal(q, qd, &mut u0)?;
@@ -164,6 +186,43 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         fb,
         count
     );
+    println!("largest joint excursion from the path start: {excursion:.3} rad");
+    // ĝ inside the babbling box: random postures within ± spread/2 of home.
+    {
+        use rand::{RngExt, SeedableRng};
+        let spread = cfg.babble.spread_for(n);
+        let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+        let (mut e2, mut g2) = (0.0, 0.0);
+        let zero = vec![0.0; n];
+        for _ in 0..500 {
+            let q: Vec<f64> = (0..n)
+                .map(|i| reach.q_start[i] + r.random_range(-0.5 * spread..0.5 * spread))
+                .collect();
+            let g = osrl_dynamics::gravity(&model, &mut data, &q)?.clone();
+            learner.nominal(&q, &zero, &mut g_hat)?;
+            for i in 0..n {
+                let gh = g_hat[i] + spec.kp[i] * (q[i] - spec.q_rest[i]);
+                e2 += (gh - g[i]).powi(2);
+                g2 += g[i].powi(2);
+            }
+        }
+        println!(
+            "gravity inside half the babbling box: rms error {:.3} N·m vs rms g {:.3}",
+            (e2 / 500.0 / n as f64).sqrt(),
+            (g2 / 500.0 / n as f64).sqrt()
+        );
+    }
+    for (what, g) in [
+        ("dynamic", learner.gravity_model()),
+        ("static", learner.gravity_static_model()),
+    ] {
+        let Some(g) = g else { continue };
+        let mut hist = std::collections::BTreeMap::new();
+        for r in g.lwpr().rfs(0)?.map(|v| v.n_reg()[0]) {
+            *hist.entry(r).or_insert(0) += 1;
+        }
+        println!("{what} gravity model PLS directions (count of RFs by R, output 0): {hist:?}");
+    }
     if let Some(f) = learner.forward_model() {
         let regs: Vec<usize> = f.lwpr().rfs(0)?.map(|v| v.n_reg()[0]).collect();
         let mut hist = std::collections::BTreeMap::new();

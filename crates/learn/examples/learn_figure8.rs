@@ -85,6 +85,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if let Ok(v) = std::env::var("MINESS") {
         lcfg.min_ess = v.parse()?;
     }
+    if let Ok(v) = std::env::var("DYNEVERY") {
+        lcfg.dynamics_every = v.parse()?;
+    }
+    if let Ok(v) = std::env::var("FWDEVERY") {
+        lcfg.forward_every = v.parse()?;
+    }
     if let Ok(v) = std::env::var("UPDEVERY") {
         lcfg.update_every = v.parse()?;
     }
@@ -109,6 +115,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         seed,
         eval_every_minutes: 1.0,
         learn_on_policy: std::env::var("NOLEARN").is_err(),
+        learn_returning_home: std::env::var("NOLEARN_HOME").is_err(),
         explore: std::env::var("NOEXPLORE").is_err(),
         babble: osrl_learn::train::BabbleConfig {
             minutes: babble,

@@ -30,7 +30,7 @@ use serde::{Deserialize, Serialize};
 /// First bytes of a saved learned controller.
 pub const MAGIC: &[u8; 8] = b"OSRLLC\0\0";
 /// Version of the saved format; files of another version are refused.
-pub const FORMAT_VERSION: u32 = 2;
+pub const FORMAT_VERSION: u32 = 3;
 
 /// Everything a learner is, as stored (the config as JSON text, so its untagged enums survive).
 #[derive(Serialize, Deserialize)]
@@ -41,6 +41,7 @@ struct Saved {
     dt: f64,
     torque_scale: Vec<f64>,
     gravity: Option<GravityModel>,
+    gravity_static: Option<GravityModel>,
     forward: Option<ForwardModel>,
     locals: LocalControllers,
     warm: Vec<Measurement>,
@@ -67,6 +68,7 @@ impl Learner {
             dt: self.dt,
             torque_scale: self.torque_scale.clone(),
             gravity: self.gravity.clone(),
+            gravity_static: self.gravity_static.clone(),
             forward: self.forward.clone(),
             locals: self.locals.clone(),
             warm: self.warm.clone(),
@@ -115,12 +117,16 @@ impl Learner {
         let mut learner = Learner::new(s.n, s.m, s.dt, cfg)?;
         learner.torque_scale = s.torque_scale;
         learner.gravity = s.gravity;
+        learner.gravity_static = s.gravity_static;
         learner.forward = s.forward;
         learner.locals = s.locals;
         learner.warm = s.warm;
         learner.stats = s.stats;
         learner.gravity_frozen = s.gravity_frozen;
-        if let Some(g) = learner.gravity.as_mut() {
+        for g in [learner.gravity.as_mut(), learner.gravity_static.as_mut()]
+            .into_iter()
+            .flatten()
+        {
             g.restore_buffers();
         }
         if let Some(f) = learner.forward.as_mut() {

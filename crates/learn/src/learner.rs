@@ -51,6 +51,8 @@ pub struct Learner {
     pub(crate) n: usize,
     pub(crate) m: usize,
     pub(crate) gravity: Option<GravityModel>,
+    /// The static gravity model (`gravity_static`), used for `u0` once `ĝ` is frozen.
+    pub(crate) gravity_static: Option<GravityModel>,
     pub(crate) forward: Option<ForwardModel>,
     pub(crate) locals: LocalControllers,
     /// Measurements kept until the models exist (the warm-up).
@@ -95,6 +97,7 @@ impl Learner {
             n,
             m,
             gravity: None,
+            gravity_static: None,
             forward: None,
             locals: LocalControllers::default(),
             dt,
@@ -152,6 +155,14 @@ impl Learner {
     /// Local controllers with enough data to act.
     pub fn n_trained(&self) -> usize {
         self.locals.n_trained(self.cfg.min_ess)
+    }
+    /// The gravity model `ĝ`, once the warm-up is over.
+    pub fn gravity_model(&self) -> Option<&crate::gravity::GravityModel> {
+        self.gravity.as_ref()
+    }
+    /// The static gravity model, if configured and past the warm-up.
+    pub fn gravity_static_model(&self) -> Option<&GravityModel> {
+        self.gravity_static.as_ref()
     }
     /// Receptive fields of the gravity model.
     pub fn n_gravity_rfs(&self) -> usize {
@@ -257,6 +268,17 @@ impl Learner {
             jacc,
             &torque,
         )?);
+        self.gravity_static = match self.cfg.gravity_static {
+            Some(gate) => Some(GravityModel::new_static(
+                n,
+                &self.cfg.gravity,
+                gate,
+                vs,
+                jacc,
+                &torque,
+            )?),
+            None => None,
+        };
         self.forward = Some(ForwardModel::new(
             n,
             m,

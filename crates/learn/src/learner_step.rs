@@ -25,15 +25,21 @@ const EXTRAPOLATION_CUTOFF: f64 = 1e-12;
 
 impl Learner {
     /// The nominal behaviour `u0 = ĝ(q) − K_Dq q̇ − K_Pq (q − q_rest)` into `u0` (`ĝ = 0` until
-    /// the gravity model has support). Returns whether `ĝ` had support.
+    /// the gravity model has support). Once `ĝ` is frozen, the static gravity model gives `ĝ`
+    /// where it has support. Returns whether `ĝ` had support.
     pub fn nominal(&mut self, q: &[f64], qd: &[f64], u0: &mut [f64]) -> Result<bool> {
-        let known = match self.gravity.as_mut() {
-            Some(g) => g.predict(q, u0)?,
-            None => {
-                u0.fill(0.0);
-                false
-            }
+        let from_static = match self.gravity_static.as_mut() {
+            Some(g) if self.gravity_frozen => g.predict(q, u0)?,
+            _ => false,
         };
+        let known = from_static
+            || match self.gravity.as_mut() {
+                Some(g) => g.predict(q, u0)?,
+                None => {
+                    u0.fill(0.0);
+                    false
+                }
+            };
         let nom = &self.cfg.nominal;
         for i in 0..self.n {
             u0[i] -= nom.kd[i] * qd[i] + nom.kp[i] * (q[i] - nom.q_rest[i]);
@@ -162,9 +168,14 @@ impl Learner {
         if dt > 0.0 && !self.gravity_frozen {
             let g = self.gravity.as_mut().expect("models exist");
             g.learn(prev.q.as_slice(), prev.qd.as_slice(), q, qd, u, dt)?;
+            if let Some(g) = self.gravity_static.as_mut() {
+                g.learn(prev.q.as_slice(), prev.qd.as_slice(), q, qd, u, dt)?;
+            }
         }
         let fwd = self.forward.as_mut().expect("models exist");
-        fwd.learn(q, qd, u, cur.xdd.as_slice())?;
+        if self.stats.samples % self.cfg.forward_every as u64 == 0 {
+            fwd.learn(q, qd, u, cur.xdd.as_slice())?;
+        }
         self.ws.events.clear();
         fwd.drain_events(&mut self.ws.events);
         // Follow the partition: new RFs get a controller, pruned ones lose theirs.
@@ -261,24 +272,28 @@ impl Learner {
         phi_d[..n].copy_from_slice(u);
         phi_d[n..2 * n].copy_from_slice(qd);
         phi_d[3 * n] = 1.0;
+        let dyn_every = self.cfg.dynamics_every as u64;
+        let dyn_now = self.stats.samples % dyn_every == 0;
         for a in &self.ws.acts {
             let Some(local) = self.locals.map.get_mut(&a.id) else {
                 continue;
             };
-            for i in 0..n {
-                phi_d[2 * n + i] = q[i] - local.center[i];
-            }
-            // Bilinear features u_j (q_k − c_k), if any.
-            if phi_d.len() > 3 * n + 1 {
-                for j in 0..n {
-                    for k in 0..n {
-                        phi_d[3 * n + 1 + j * n + k] = u[j] * phi_d[2 * n + k];
+            if dyn_now {
+                for i in 0..n {
+                    phi_d[2 * n + i] = q[i] - local.center[i];
+                }
+                // Bilinear features u_j (q_k − c_k), if any.
+                if phi_d.len() > 3 * n + 1 {
+                    for j in 0..n {
+                        for k in 0..n {
+                            phi_d[3 * n + 1 + j * n + k] = u[j] * phi_d[2 * n + k];
+                        }
                     }
                 }
+                local
+                    .dynamics
+                    .observe(phi_d, cur.xdd.as_slice(), 0.0, a.w)?;
             }
-            local
-                .dynamics
-                .observe(phi_d, cur.xdd.as_slice(), 0.0, a.w)?;
             if self.cfg.position_features {
                 for i in 0..n {
                     phi[m + n + i] = q[i] - local.center[i];
@@ -288,7 +303,7 @@ impl Learner {
             local.pending += 1;
             if local.pending >= self.cfg.update_every {
                 local.pending = 0;
-                if local.dynamics.update().is_ok() {
+                if local.updates % dyn_every == 0 && local.dynamics.update().is_ok() {
                     local.dynamics_updates += 1;
                 }
                 match local.rwr.update() {

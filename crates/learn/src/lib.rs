@@ -45,7 +45,7 @@ mod variant;
 pub use config::{CostKind, ExplorationKind, LearnerConfig, NominalConfig};
 pub use error::{LearnError, Result};
 pub use forward::ForwardModel;
-pub use gravity::GravityModel;
+pub use gravity::{GravityModel, StaticGate};
 pub use learner::{CommandSource, Learner, LearnerStats};
 pub use local::LocalSummary;
 pub use variant::Variant;

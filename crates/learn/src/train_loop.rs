@@ -86,8 +86,9 @@ impl<R: Robot + ?Sized> Run<'_, R> {
                 self.cfg.babble.gain_scale,
                 &mut self.u,
             )?;
-            // Babbling noise: the torque of a `noise`-radian PD error, per joint.
-            if noise > 0.0 {
+            // Babbling noise: the torque of a `noise`-radian PD error, per joint; none while
+            // holding the target, so the arm comes to rest (the static gravity model's samples).
+            if noise > 0.0 && (k as f64) * self.dt < total {
                 let kp = &self.learner.config().nominal.kp;
                 for (u, k) in self.u.iter_mut().zip(kp) {
                     let z: f64 = StandardNormal.sample(&mut self.rng);
@@ -203,7 +204,7 @@ pub fn train<R: Robot + ?Sized>(
         run.pd_move(
             &target,
             total,
-            0.3,
+            cfg.babble.settle,
             cfg.babble.noise,
             babble_end,
             evaluate,
@@ -230,6 +231,7 @@ pub fn train<R: Robot + ?Sized>(
             .fold(0.0, f64::max);
         if off > 0.01 || run.prev.qd.amax() > 0.01 {
             let limit = run.total_steps;
+            run.learning = cfg.learn_on_policy && cfg.learn_returning_home;
             run.pd_move(
                 &home,
                 2.0,
@@ -243,6 +245,7 @@ pub fn train<R: Robot + ?Sized>(
             last_u = None;
             continue;
         }
+        run.learning = cfg.learn_on_policy;
         progress.episodes += 1;
         let k_ep = (cfg.episode_seconds / dt).round() as u64;
         for k in 0..k_ep {

@@ -44,13 +44,21 @@ impl Stats {
     /// Adds one sample `(φ, u, r)` with weight `w`. Lengths are the caller's responsibility.
     pub fn add(&mut self, w: f64, phi: &[f64], u: &[f64], r: f64) {
         let p = phi.len();
+        // Column j of the lower triangle of G gains w φ_j φ[j..] (contiguous, column-major).
+        let gram = self.gram.as_mut_slice();
         for j in 0..p {
             let wj = w * phi[j];
-            for i in j..p {
-                self.gram[(i, j)] += wj * phi[i];
+            let col = &mut gram[j * p + j..(j + 1) * p];
+            for (g, x) in col.iter_mut().zip(&phi[j..]) {
+                *g += wj * x;
             }
-            for (k, uk) in u.iter().enumerate() {
-                self.cross[(j, k)] += wj * uk;
+        }
+        // Column k of C gains (w u_k) φ, in the same order of operations as w φ_j u_k.
+        let cross = self.cross.as_mut_slice();
+        for (k, uk) in u.iter().enumerate() {
+            let col = &mut cross[k * p..(k + 1) * p];
+            for (c, x) in col.iter_mut().zip(phi) {
+                *c += w * x * uk;
             }
         }
         self.yy += w * u.iter().map(|x| x * x).sum::<f64>();
@@ -145,40 +153,54 @@ impl Solver {
 /// [`RwrError::Singular`] (B then holds garbage) when `A` is not numerically positive definite.
 fn cholesky_solve_lower(a: &mut DMatrix<f64>, b: &mut DMatrix<f64>) -> Result<()> {
     let p = a.nrows();
+    // Right-looking factorisation on contiguous columns (the same operations, in the same
+    // order per element, as the textbook left-looking loop). The original diagonal, needed for
+    // the pivot test, is kept in the unused upper triangle (row 0).
+    for j in 1..p {
+        a[(0, j)] = a[(j, j)];
+    }
+    let m = a.as_mut_slice();
     for j in 0..p {
-        let diag = a[(j, j)];
-        let mut d = diag;
-        for k in 0..j {
-            d -= a[(j, k)] * a[(j, k)];
-        }
+        let diag = if j == 0 { m[0] } else { m[j * p] };
+        let d = m[j * p + j];
         // A pivot lost to rounding (relative to its diagonal) counts as singular.
         if !(d > 1e-13 * diag && d.is_finite()) {
             return Err(RwrError::Singular);
         }
         let d = d.sqrt();
-        a[(j, j)] = d;
-        for i in j + 1..p {
-            let mut v = a[(i, j)];
-            for k in 0..j {
-                v -= a[(i, k)] * a[(j, k)];
+        m[j * p + j] = d;
+        for v in &mut m[j * p + j + 1..(j + 1) * p] {
+            *v /= d;
+        }
+        // Update the trailing columns: A[c.., c] −= L[c, j] L[c.., j].
+        let (left, right) = m.split_at_mut((j + 1) * p);
+        let lj = &left[j * p..(j + 1) * p];
+        for c in j + 1..p {
+            let l = lj[c];
+            let off = (c - j - 1) * p;
+            for (t, x) in right[off + c..off + p].iter_mut().zip(&lj[c..]) {
+                *t -= x * l;
             }
-            a[(i, j)] = v / d;
         }
     }
+    let l = a.as_slice();
     for c in 0..b.ncols() {
-        for i in 0..p {
-            let mut v = b[(i, c)];
-            for k in 0..i {
-                v -= a[(i, k)] * b[(k, c)];
+        let col = &mut b.as_mut_slice()[c * p..(c + 1) * p];
+        // Forward substitution, column by column of L.
+        for k in 0..p {
+            let v = col[k] / l[k * p + k];
+            col[k] = v;
+            for (t, x) in col[k + 1..].iter_mut().zip(&l[k * p + k + 1..(k + 1) * p]) {
+                *t -= x * v;
             }
-            b[(i, c)] = v / a[(i, i)];
         }
+        // Back substitution with Lᵀ (columns of L are contiguous).
         for i in (0..p).rev() {
-            let mut v = b[(i, c)];
-            for k in i + 1..p {
-                v -= a[(k, i)] * b[(k, c)];
+            let mut v = col[i];
+            for (x, y) in l[i * p + i + 1..(i + 1) * p].iter().zip(&col[i + 1..]) {
+                v -= x * y;
             }
-            b[(i, c)] = v / a[(i, i)];
+            col[i] = v / l[i * p + i];
         }
     }
     Ok(())
