@@ -129,6 +129,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         ..TrainConfig::default()
     };
     let mut cfg = cfg;
+    if let Ok(v) = std::env::var("RESET") {
+        cfg.reset_error = v.parse()?;
+    }
     if let Ok(v) = std::env::var("KP") {
         let kp: f64 = v.parse()?;
         cfg.gains = osrl_control::TaskGains {
