@@ -132,9 +132,9 @@ pub struct LearnerConfig {
     /// A second gravity model learnt from still samples only (see [`StaticGate`]), regressing on
     /// `q` alone; once `ĝ` is frozen (on-policy), `u0` uses it wherever it has support (the
     /// dynamic model drives the babbling and fills in elsewhere). `None`: the dynamic model only.
-    /// Default `Some(StaticGate::default())`. Measured on sarcos7 after 4 minutes of babbling:
-    /// RMS `ĝ` error 0.14 N·m inside the babbling region and 0.26 along the figure-8 (static)
-    /// against 0.47 and 0.77 (dynamic). Feeding the static model back into the babbling instead
+    /// Default `Some(StaticGate::default())`. Measured on sarcos7 after 4 minutes of babbling
+    /// (seeds 0/1/2): RMS `ĝ` error 0.08–0.10 N·m inside the babbling region and 0.15–0.21 along
+    /// the figure-8 (static) against 0.47–0.50 and 0.77–0.90 (dynamic). Feeding the static model back into the babbling instead
     /// made the babbling unstable on 3 of 5 settings (a few still postures per receptive field
     /// give wild slopes).
     pub gravity_static: Option<crate::gravity::StaticGate>,
