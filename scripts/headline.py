@@ -13,6 +13,11 @@ def num(v, fmt="{:.3g}"):
     return "–"
 
 
+def mean(v, fmt):
+    """The mean of a `{mean, min, max}` summary (or the status that replaced it)."""
+    return num(v.get("mean", v) if isinstance(v, dict) else v, fmt)
+
+
 def main():
     out = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else "report")
     r = json.loads((out / "results.json").read_text())
@@ -29,11 +34,9 @@ def main():
         track = " / ".join(num(s.get("tracking_rms_mm"), "{:.2f}") if s.get("evaluated") else "diverged" for s in seeds)
         nmse = " / ".join(num(s.get("command_nmse"), "{:.3f}") if s.get("evaluated") else "diverged" for s in seeds)
         rt = e["realtime_factor"]
-        print(f"| {robot} | {num(e['sim_training_minutes']['mean'], '{:.0f}')} | {track} | {nmse} "
-              f"| {num(e['command_cost_ratio'].get('mean'), '{:.3f}')} "
-              f"| {num(e['n_local_models']['mean'], '{:.0f}')} "
-              f"| {rt['min']:.1f}–{rt['max']:.1f} "
-              f"| {num(e['max_command_step']['max'], '{:.1f}')} "
+        print(f"| {robot} | {mean(e['sim_training_minutes'], '{:.0f}')} | {track} | {nmse} "
+              f"| {mean(e['command_cost_ratio'], '{:.3f}')} | {mean(e['n_local_models'], '{:.0f}')} "
+              f"| {rt['min']:.1f}–{rt['max']:.1f} | {num(e['max_command_step']['max'], '{:.1f}')} "
               f"| {num(e.get('analytical_eq7_tracking_rms_mm'), '{:.3f}')} |")
     print("\nE6 ablation (final evaluation; mean over seeds):\n")
     print("| robot | variant | tracking RMS (mm) | command nMSE | cost ratio | local models |")
@@ -43,19 +46,16 @@ def main():
             if "tracking_rms_mm" not in row:
                 print(f"| {robot} | {key} | {num(row)} | | | |")
                 continue
-            print(f"| {robot} | {key} | {num(row['tracking_rms_mm'].get('mean', row['tracking_rms_mm']), '{:.2f}')} "
-                  f"| {num(row['command_nmse'].get('mean', row['command_nmse']), '{:.3f}')} "
-                  f"| {num(row['command_cost_ratio'].get('mean', row['command_cost_ratio']), '{:.3f}')} "
-                  f"| {num(row['n_local_models']['mean'], '{:.0f}')} |")
+            cells = [mean(row[k], f) for k, f in [("tracking_rms_mm", "{:.2f}"), ("command_nmse", "{:.3f}"),
+                                                  ("command_cost_ratio", "{:.3f}"), ("n_local_models", "{:.0f}")]]
+            print(f"| {robot} | {key} | " + " | ".join(cells) + " |")
     print("\nE7 model errors (tracking RMS, mm):\n")
     print("| robot | model error | eq. 7 with the wrong model | learned (trained on the true robot) |")
     print("|---|---|---|---|")
     for robot, rows in r["E7"].items():
         for key, row in rows.items():
-            learned = row.get("learned_tracking_rms_mm")
-            learned = learned.get("mean", learned) if isinstance(learned, dict) else learned
             print(f"| {robot} | {key} | {num(row.get('analytical_eq7_tracking_rms_mm'), '{:.3f}')} "
-                  f"| {num(learned, '{:.3f}')} |")
+                  f"| {mean(row.get('learned_tracking_rms_mm'), '{:.3f}')} |")
 
 
 if __name__ == "__main__":
