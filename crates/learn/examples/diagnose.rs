@@ -22,29 +22,29 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     lcfg.position_features = std::env::var("POS").is_ok();
     lcfg.residual = std::env::var("NORES").is_err();
     lcfg.reward_weighting = std::env::var("NORW").is_err();
-    if let Ok(d) = std::env::var("INITD") {
-        lcfg.forward.init_d = lwpr::MetricInit::Scalar(d.parse()?);
+    // Numeric knobs: each environment variable, when set, overrides one setting.
+    let num = |name: &str| -> Result<Option<f64>, Box<dyn std::error::Error>> {
+        Ok(std::env::var(name).ok().map(|v| v.parse()).transpose()?)
+    };
+    if let Some(d) = num("INITD")? {
+        lcfg.forward.init_d = lwpr::MetricInit::Scalar(d);
     }
-    if let Ok(v) = std::env::var("FORGET") {
-        lcfg.rwr.forgetting = v.parse()?;
+    if let Some(d) = num("GINITD")? {
+        lcfg.gravity.init_d = lwpr::MetricInit::Scalar(d);
     }
-    if let Ok(v) = std::env::var("ALPHA") {
-        lcfg.forward.init_alpha = v.parse()?;
+    for (name, field) in [
+        ("FORGET", &mut lcfg.rwr.forgetting),
+        ("ALPHA", &mut lcfg.forward.init_alpha),
+        ("VS", &mut lcfg.velocity_scale),
+        ("GADD", &mut lcfg.gravity.add_threshold),
+        ("GWGEN", &mut lcfg.gravity.w_gen),
+    ] {
+        if let Some(v) = num(name)? {
+            *field = v;
+        }
     }
     if std::env::var("NOUPD").is_ok() {
         lcfg.forward.update_d = false;
-    }
-    if let Ok(v) = std::env::var("VS") {
-        lcfg.velocity_scale = v.parse()?;
-    }
-    if let Ok(d) = std::env::var("GINITD") {
-        lcfg.gravity.init_d = lwpr::MetricInit::Scalar(d.parse()?);
-    }
-    if let Ok(v) = std::env::var("GADD") {
-        lcfg.gravity.add_threshold = v.parse()?;
-    }
-    if let Ok(v) = std::env::var("GWGEN") {
-        lcfg.gravity.w_gen = v.parse()?;
     }
     if std::env::var("NOPROD").is_ok() {
         lcfg.gravity_velocity_products = false;
