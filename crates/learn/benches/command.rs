@@ -24,7 +24,12 @@ fn bench(c: &mut Criterion) {
             n,
             m,
             0.002,
-            LearnerConfig::for_robot(&spec.kp, &spec.kd, &spec.q_rest),
+            LearnerConfig::for_robot(
+                &spec.kp,
+                &spec.kd,
+                &spec.q_rest,
+                &model.tau_max().collect::<Vec<_>>(),
+            ),
         )
         .unwrap();
         let cfg = TrainConfig {

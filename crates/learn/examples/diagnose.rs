@@ -18,7 +18,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let spec = model.spec();
     let mut sim = SimRobot::new(model.clone(), SimConfig::default())?;
     sim.reset(&reach.q_start, &vec![0.0; n])?;
-    let mut lcfg = LearnerConfig::for_robot(&spec.kp, &spec.kd, &spec.q_rest);
+    let mut lcfg = LearnerConfig::for_robot(
+        &spec.kp,
+        &spec.kd,
+        &spec.q_rest,
+        &model.tau_max().collect::<Vec<_>>(),
+    );
     lcfg.position_features = std::env::var("POS").is_ok();
     lcfg.residual = std::env::var("NORES").is_err();
     lcfg.reward_weighting = std::env::var("NORW").is_err();

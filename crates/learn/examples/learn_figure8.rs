@@ -24,7 +24,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         },
     )?;
     sim.reset(&reach.q_start, &vec![0.0; model.nq()])?;
-    let mut lcfg = LearnerConfig::for_robot(&spec.kp, &spec.kd, &spec.q_rest);
+    let mut lcfg = LearnerConfig::for_robot(
+        &spec.kp,
+        &spec.kd,
+        &spec.q_rest,
+        &model.tau_max().collect::<Vec<_>>(),
+    );
     if let Ok(c) = std::env::var("COST") {
         lcfg.cost = if c == "null" {
             osrl_learn::CostKind::NullSpace

@@ -147,6 +147,11 @@ pub struct LearnerConfig {
     /// torques during the warm-up (so light distal joints are not shaken by the noise that
     /// suits heavy proximal ones). Default 0.05.
     pub exploration_cap: f64,
+    /// Torque limits (N·m), one per joint, from the robot's data sheet: every command of the
+    /// learned controller, exploration noise included, is clipped to `±limit` (counted in
+    /// [`crate::LearnerStats::clipped`]). Empty: no limits. Default empty;
+    /// [`LearnerConfig::for_robot`] fills it.
+    pub torque_limits: Vec<f64>,
     /// Measurements with `|ẍ|` above this (m/s²) or `|q̇|` above 100·this are rejected as absurd.
     /// Default 1000.
     pub max_abs_acceleration: f64,
@@ -204,6 +209,7 @@ impl Default for LearnerConfig {
             dynamics_forgetting: 0.99995,
             dynamics_bilinear: true,
             exploration_cap: 0.05,
+            torque_limits: Vec::new(),
             max_abs_acceleration: 1000.0,
             warmup_samples: 1000,
             velocity_scale: 10.0,
@@ -212,15 +218,17 @@ impl Default for LearnerConfig {
 }
 
 impl LearnerConfig {
-    /// The defaults with the nominal behaviour of a robot's data sheet: its joint PD gains and
-    /// rest posture (no dynamics parameters).
-    pub fn for_robot(kp: &[f64], kd: &[f64], q_rest: &[f64]) -> Self {
+    /// The defaults with the nominal behaviour and torque limits of a robot's data sheet: its
+    /// joint PD gains, rest posture and torque limits (N·m; an infinite limit is stored as
+    /// `f64::MAX`, no limit, so the config stays plain JSON). No dynamics parameters.
+    pub fn for_robot(kp: &[f64], kd: &[f64], q_rest: &[f64], tau_max: &[f64]) -> Self {
         Self {
             nominal: NominalConfig {
                 kp: kp.to_vec(),
                 kd: kd.to_vec(),
                 q_rest: q_rest.to_vec(),
             },
+            torque_limits: tau_max.iter().map(|t| t.min(f64::MAX)).collect(),
             ..Self::default()
         }
     }
@@ -289,6 +297,12 @@ impl LearnerConfig {
                     g.max_velocity, g.max_acceleration
                 ));
             }
+        }
+        let tl = &self.torque_limits;
+        if !(tl.is_empty() || tl.len() == n) || tl.iter().any(|t| !(*t > 0.0)) {
+            return bad(format!(
+                "torque_limits needs {n} values > 0 (N·m) or none, got {tl:?}"
+            ));
         }
         if self.warmup_samples < 10 {
             return bad("warmup_samples must be ≥ 10".into());

@@ -16,6 +16,9 @@ pub enum LearnError {
     /// A measurement was rejected (non-finite or absurd); the learner is unchanged.
     #[error("measurement rejected: {0}")]
     BadMeasurement(String),
+    /// A value the learner computed was NaN or infinite.
+    #[error("{0} is not finite")]
+    NonFinite(&'static str),
     #[error(transparent)]
     Lwpr(#[from] lwpr::LwprError),
     #[error(transparent)]

@@ -21,6 +21,10 @@ pub struct LearnerStats {
     pub fallbacks: u64,
     /// Commands extrapolated from trained controllers active below the cutoff.
     pub extrapolations: u64,
+    /// Commands with at least one joint clipped to its torque limit.
+    pub clipped: u64,
+    /// Commands whose learned blend was not finite and fell back to `u0`.
+    pub non_finite: u64,
     /// Local M-steps done and those that failed (too few samples).
     pub m_steps: u64,
     pub failed_m_steps: u64,

@@ -48,9 +48,38 @@ impl Learner {
     }
 
     /// The learned command (eq. 34) for the reference acceleration `xdd_ref` at `(q, q̇)` into `u`,
-    /// plus Gaussian exploration noise of the blended `σ` when `rng` is given. Falls back to `u0`
-    /// (counted) where no trained local controller is active. Does not allocate.
+    /// plus Gaussian exploration noise of the blended `σ` when `rng` is given, clipped to the
+    /// torque limits (counted). Falls back to `u0` (counted) where no trained local controller
+    /// is active. Does not allocate.
     pub fn command<R: Rng + ?Sized>(
+        &mut self,
+        q: &[f64],
+        qd: &[f64],
+        xdd_ref: &[f64],
+        rng: Option<&mut R>,
+        u: &mut [f64],
+    ) -> Result<CommandSource> {
+        let mut source = self.unclipped_command(q, qd, xdd_ref, rng, u)?;
+        // Guard: a non-finite blend (a diverged local model) falls back to u0, counted.
+        if u.iter().any(|v| !v.is_finite()) {
+            self.stats.non_finite += 1;
+            source = self.fallback(q, qd, u)?;
+            if u.iter().any(|v| !v.is_finite()) {
+                return Err(LearnError::NonFinite("the nominal command u0"));
+            }
+        }
+        let mut clipped = false;
+        for (v, lim) in u.iter_mut().zip(&self.cfg.torque_limits) {
+            let c = v.clamp(-lim, *lim);
+            clipped |= c != *v;
+            *v = c;
+        }
+        self.stats.clipped += clipped as u64;
+        Ok(source)
+    }
+
+    /// [`Learner::command`] before the torque limits.
+    fn unclipped_command<R: Rng + ?Sized>(
         &mut self,
         q: &[f64],
         qd: &[f64],

@@ -33,7 +33,12 @@ pub fn learner(s: &Setup) -> Learner {
         3,
         2,
         0.002,
-        LearnerConfig::for_robot(&spec.kp, &spec.kd, &spec.q_rest),
+        LearnerConfig::for_robot(
+            &spec.kp,
+            &spec.kd,
+            &spec.q_rest,
+            &s.model.tau_max().collect::<Vec<_>>(),
+        ),
     )
     .unwrap()
 }

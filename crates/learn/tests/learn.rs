@@ -82,7 +82,12 @@ fn training_reduces_the_tracking_error_and_beats_the_nominal_controller() {
     // The nominal behaviour alone (PD to rest plus learned gravity) does not track the figure-8:
     // compare with a learner whose local controllers never act (min_ess unreachable).
     let spec = s.model.spec();
-    let mut cfg = osrl_learn::LearnerConfig::for_robot(&spec.kp, &spec.kd, &spec.q_rest);
+    let mut cfg = osrl_learn::LearnerConfig::for_robot(
+        &spec.kp,
+        &spec.kd,
+        &spec.q_rest,
+        &s.model.tau_max().collect::<Vec<_>>(),
+    );
     cfg.min_ess = 1e12;
     let mut nominal_only = osrl_learn::Learner::new(3, 2, 0.002, cfg).unwrap();
     let nominal = common::run(&s, &mut nominal_only, 4.5, 4.0, 0.0, 0);
@@ -142,4 +147,51 @@ fn invalid_training_settings_are_refused_with_the_field_named() {
     let mut cfg = TrainConfig::default();
     cfg.minutes = f64::NAN;
     assert!(cfg.validate().unwrap_err().to_string().contains("minutes"));
+}
+
+#[test]
+fn commands_respect_the_torque_limits_and_bad_limits_are_refused() {
+    let s = common::planar3();
+    let spec = s.model.spec();
+    let mut cfg = osrl_learn::LearnerConfig::for_robot(
+        &spec.kp,
+        &spec.kd,
+        &spec.q_rest,
+        &s.model.tau_max().collect::<Vec<_>>(),
+    );
+    // Limits from the data sheet reach the config; a wrong count or a non-positive limit is refused.
+    assert_eq!(cfg.torque_limits, vec![60.0, 40.0, 20.0]);
+    for bad in [vec![1.0, 1.0], vec![1.0, 0.0, 1.0], vec![1.0, f64::NAN, 1.0]] {
+        let c = osrl_learn::LearnerConfig {
+            torque_limits: bad.clone(),
+            ..cfg.clone()
+        };
+        let err = osrl_learn::Learner::new(3, 2, 0.002, c).err();
+        assert!(
+            matches!(&err, Some(LearnError::InvalidConfig(m)) if m.contains("torque_limits")),
+            "{bad:?}: {err:?}"
+        );
+    }
+    // Limits far below gravity: every command (fallback u0, then the learned blend with
+    // exploration) stays inside them, and the clipped commands are counted.
+    cfg.torque_limits = vec![0.5, 0.4, 0.3];
+    let mut learner = osrl_learn::Learner::new(3, 2, 0.002, cfg.clone()).unwrap();
+    let mut rng = <rand_chacha::ChaCha8Rng as rand::SeedableRng>::seed_from_u64(3);
+    let mut u = vec![0.0; 3];
+    let q = s.q_start.clone();
+    learner
+        .command(&q, &[0.0; 3], &[5.0, -5.0], Some(&mut rng), &mut u)
+        .unwrap();
+    let within = |u: &[f64]| u.iter().zip(&cfg.torque_limits).all(|(v, l)| v.abs() <= *l);
+    assert!(within(&u), "{u:?}");
+    common::run(&s, &mut learner, 0.5, 0.4, 0.0, 1);
+    let before = learner.stats().clipped;
+    for k in 0..20 {
+        let qd = [0.1 * k as f64, -0.3, 0.2];
+        learner
+            .command(&q, &qd, &[50.0, -40.0], Some(&mut rng), &mut u)
+            .unwrap();
+        assert!(within(&u), "{u:?}");
+    }
+    assert!(learner.stats().clipped > before, "{:?}", learner.stats());
 }

@@ -91,7 +91,12 @@ impl Setup {
         variant: impl FnOnce(&mut LearnerConfig),
     ) -> Res<(Learner, TrainSummary)> {
         let spec = self.model.spec();
-        let mut lcfg = LearnerConfig::for_robot(&spec.kp, &spec.kd, &spec.q_rest);
+        let mut lcfg = LearnerConfig::for_robot(
+            &spec.kp,
+            &spec.kd,
+            &spec.q_rest,
+            &self.model.tau_max().collect::<Vec<_>>(),
+        );
         variant(&mut lcfg);
         let babble = BabbleConfig::default();
         let tcfg = TrainConfig {

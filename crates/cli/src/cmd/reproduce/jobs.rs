@@ -130,9 +130,12 @@ fn run_one(
     .0;
     let truth = if job.payload { &payload } else { model };
     let spec = model.spec();
-    let lcfg = job
-        .variant
-        .config(LearnerConfig::for_robot(&spec.kp, &spec.kd, &spec.q_rest));
+    let lcfg = job.variant.config(LearnerConfig::for_robot(
+        &spec.kp,
+        &spec.kd,
+        &spec.q_rest,
+        &model.tau_max().collect::<Vec<_>>(),
+    ));
     let tcfg = TrainConfig {
         minutes: rs.minutes,
         seed: job.seed,
