@@ -148,8 +148,9 @@ pub(crate) fn derivatives(
 }
 
 /// One output's part of the metric gradient (the `∂J1/∂w` terms) from its PLS state after the
-/// regression step, with `s` the new projections, `e_cv` and `e` from that step. Updates the
-/// memory traces `H`, `r`. Does nothing while `n_data[0]·(1 − λ[0]) ≤ 0.1`.
+/// regression step, with `s` the new projections, `e_cv` and `e` from that step (`ps`: scratch
+/// of the same length). Updates the memory traces `H`, `r`. Does nothing while
+/// `n_data[0]·(1 − λ[0]) ≤ 0.1`.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 pub(crate) fn output_terms(
@@ -157,26 +158,30 @@ pub(crate) fn output_terms(
     nr: usize,
     w: f64,
     s: &[f64],
+    ps: &mut [f64],
     e_cv: f64,
     e: f64,
     meta: bool,
     acc: &mut MetricAcc,
 ) {
     let r = pls.n_reg;
-    let l0 = 1.0 - pls.lambda[0];
-    let ok = |j: usize| pls.n_data[j] * l0 > 0.1;
+    let (n_data, ss_s2, lambda) = (&pls.n_data[..r], &pls.ss_s2[..r], &pls.lambda[..r]);
+    let (h_tr, r_tr) = (&mut pls.h_tr[..r], &mut pls.r_tr[..r]);
+    let (s, ps) = (&s[..r], &mut ps[..r]);
+    let l0 = 1.0 - lambda[0];
+    let ok = |j: usize| n_data[j] * l0 > 0.1;
     if !ok(0) {
         return;
     }
     let mut h = 0.0;
     for j in 0..r {
         if ok(j) {
-            h += s[j] * s[j] / pls.ss_s2[j];
+            h += s[j] * s[j] / ss_s2[j];
         }
     }
     h *= w;
     let big_w = pls.sum_w[0];
-    let big_e = if r == 1 || pls.n_data[r - 1] > 2.0 * nr as f64 {
+    let big_e = if r == 1 || n_data[r - 1] > 2.0 * nr as f64 {
         pls.sum_e_cv2[r - 1]
     } else {
         pls.sum_e_cv2[r - 2]
@@ -187,9 +192,10 @@ pub(crate) fn output_terms(
     let mut spse = 0.0;
     for j in 0..r {
         if ok(j) {
-            let ps = s[j] / pls.ss_s2[j];
-            let pse = e * ps;
-            dj1 -= 2.0 * pse * pls.h_tr[j] + 2.0 * ps * ps * pls.r_tr[j];
+            // `s_j / SSs2_j`, kept for the second-derivative sum.
+            ps[j] = s[j] / ss_s2[j];
+            let pse = e * ps[j];
+            dj1 -= 2.0 * pse * h_tr[j] + 2.0 * ps[j] * ps[j] * r_tr[j];
             spse += s[j] * pse;
         }
     }
@@ -198,8 +204,7 @@ pub(crate) fn output_terms(
         let mut ddj1 = 2.0 * (e * e * h / w - e_cv2 / big_w) + big_e / (big_w * big_w);
         for j in 0..r {
             if ok(j) {
-                let ps = s[j] / pls.ss_s2[j];
-                ddj1 += 4.0 * (e * ps / big_w + ps * spse) * pls.h_tr[j];
+                ddj1 += 4.0 * (e * ps[j] / big_w + ps[j] * spse) * h_tr[j];
             }
         }
         acc.c += t * ddj1 / big_w;
@@ -207,11 +212,12 @@ pub(crate) fn output_terms(
     acc.a += t * w / big_w;
     acc.b += t * dj1;
     acc.n += 1;
+    let (fh, fr) = (w / (1.0 - h), w * w * e_cv2 / (1.0 - h));
     for j in 0..r {
         if ok(j) {
-            let lam = pls.lambda[j];
-            pls.h_tr[j] = lam * pls.h_tr[j] + (w / (1.0 - h)) * s[j] * e_cv * t;
-            pls.r_tr[j] = lam * pls.r_tr[j] + (w * w * e_cv2 / (1.0 - h)) * s[j] * s[j] * t;
+            let lam = lambda[j];
+            h_tr[j] = lam * h_tr[j] + fh * s[j] * e_cv * t;
+            r_tr[j] = lam * r_tr[j] + fr * s[j] * s[j] * t;
         }
     }
 }

@@ -64,8 +64,9 @@ pub(crate) fn set_rows(y: &mut [f64], coefs: &[f64], src: &[f64], stride: usize)
 #[inline(always)]
 pub(crate) fn pad_rows(nk: usize, src: &[f64], dst: &mut [f64]) {
     let nkp = padded(nk);
-    for (s, d) in src.chunks_exact(nk).zip(dst.chunks_exact_mut(nkp)) {
-        d[..nk].copy_from_slice(s);
+    for r in 0..nk {
+        let d = &mut dst[r * nkp..(r + 1) * nkp];
+        d[..nk].copy_from_slice(&src[r * nk..(r + 1) * nk]);
         debug_assert!(d[nk..].iter().all(|&v| v == 0.0));
     }
 }
@@ -232,22 +233,19 @@ pub(crate) fn mtm(
     pad_rows(nk, m, mp);
     for i in 0..nk {
         let a0 = i & !3;
-        for (c, &v) in col[..=i].iter_mut().zip(m[i..].iter().step_by(nk)) {
+        // Column i of M down to the diagonal (`..i + 1`: a `..=i` index is not inlined).
+        let col = &mut col[..i + 1];
+        for (c, &v) in col.iter_mut().zip(m[i..].iter().step_by(nk)) {
             *c = v;
         }
-        set_rows(
-            &mut dp[i * nkp + a0..(i + 1) * nkp],
-            &col[..=i],
-            &mp[a0..],
-            nkp,
-        );
+        set_rows(&mut dp[i * nkp + a0..(i + 1) * nkp], col, &mp[a0..], nkp);
     }
     for i in 0..nk {
         let src = &dp[i * nkp + i..i * nkp + nk];
         d[i * nk + i..(i + 1) * nk].copy_from_slice(src);
         // Column i below the diagonal.
-        for (dv, &v) in d[i * nk + i..].iter_mut().step_by(nk).zip(src).skip(1) {
-            *dv = v;
+        for j in i + 1..nk {
+            d[j * nk + i] = src[j - i];
         }
     }
 }

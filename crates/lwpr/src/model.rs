@@ -203,6 +203,8 @@ fn update_sub_dims(
         (7, 21) => update_sub_impl::<7, 21>(p, sub, s, o0, ws, events, next_id),
         (6, 9) => update_sub_impl::<6, 9>(p, sub, s, o0, ws, events, next_id),
         (3, 9) => update_sub_impl::<3, 9>(p, sub, s, o0, ws, events, next_id),
+        // 21 inputs: the robot inverse-dynamics benchmark `[q, q̇, q̈]` and the 21-D cross.
+        (21, 21) => update_sub_impl::<21, 21>(p, sub, s, o0, ws, events, next_id),
         _ => update_sub_impl::<0, 0>(p, sub, s, o0, ws, events, next_id),
     }
 }
@@ -223,8 +225,10 @@ fn update_sub_impl<const NK: usize, const NR: usize>(
     let nr = if NR > 0 { NR } else { p.nr() };
     let (ml, ny) = (p.mlen(), p.n_local_out());
     let diag = p.cfg.diag_only;
-    let qb = p.q_bound(W_UPDATE);
+    let qb = ws.qb_update;
     let (mut q1, mut i1, mut q2, mut i2) = (f64::INFINITY, usize::MAX, f64::INFINITY, usize::MAX);
+    // Their activations where already computed (q < qb), for the add/prune tests.
+    let (mut w1, mut w2) = (None, None);
     ws.active.clear();
     let kern = if diag { &sub.ds } else { &sub.ms };
     for i in 0..sub.rfs.len() {
@@ -237,17 +241,19 @@ fn update_sub_impl<const NK: usize, const NR: usize>(
             // An RF at q ≥ max(qb, q2) is neither updated nor among the two most active.
             qb.max(q2),
         );
-        if q < q2 {
-            if q < q1 {
-                (q2, i2, q1, i1) = (q1, i1, q, i);
-            } else {
-                (q2, i2) = (q, i);
-            }
-        }
+        let mut wq = None;
         if q < qb {
             let (w, dw, ddw) = p.kernel(q);
             if w > W_UPDATE {
                 ws.active.push((i, w, dw, ddw));
+            }
+            wq = Some(w);
+        }
+        if q < q2 {
+            if q < q1 {
+                (q2, i2, w2, q1, i1, w1) = (q1, i1, w1, q, i, wq);
+            } else {
+                (q2, i2, w2) = (q, i, wq);
             }
         }
     }
@@ -268,7 +274,8 @@ fn update_sub_impl<const NK: usize, const NR: usize>(
                 ws.yacc[o] += w * r.yp;
             }
             if p.cfg.update_d {
-                metric::output_terms(out, nr, w, &ws.pls.s, r.e_cv, r.e, p.cfg.meta, &mut acc);
+                let (sv, ps) = (&ws.pls.s, &mut ws.pls.ps);
+                metric::output_terms(out, nr, w, sv, ps, r.e_cv, r.e, p.cfg.meta, &mut acc);
             }
             out.check_grow(p);
             pls::forget(out, p.cfg.tau_lambda, p.cfg.final_lambda);
@@ -335,7 +342,11 @@ fn update_sub_impl<const NK: usize, const NR: usize>(
         };
     }
     // Add or prune (step 5).
-    let w_max = if i1 < usize::MAX { p.kernel(q1).0 } else { 0.0 };
+    let w_max = if i1 < usize::MAX {
+        w1.unwrap_or_else(|| p.kernel(q1).0)
+    } else {
+        0.0
+    };
     if w_max <= p.cfg.w_gen {
         let template =
             (i1 < usize::MAX && w_max > 0.1 * p.cfg.w_gen && sub.rfs[i1].trustworthy).then_some(i1);
@@ -356,7 +367,7 @@ fn update_sub_impl<const NK: usize, const NR: usize>(
         }
         return (w_max, true, false);
     }
-    if i2 < usize::MAX && p.kernel(q2).0 > p.cfg.w_prune {
+    if i2 < usize::MAX && w2.unwrap_or_else(|| p.kernel(q2).0) > p.cfg.w_prune {
         // The C library v1.2 removes the wider of the two (smaller trace of D; on a tie the
         // second); LWPR.md and the library's Matlab code the narrower (on a tie the first).
         let (t1, t2) = (sub.trace_d(p, i1), sub.trace_d(p, i2));

@@ -16,6 +16,8 @@ pub(crate) struct PlsScratch {
     pub e_cv: Vec<f64>,
     /// Working residual for projections.
     pub xu: Vec<f64>,
+    /// `s_j / SSs2_j` (metric step).
+    pub ps: Vec<f64>,
 }
 
 impl PlsScratch {
@@ -27,6 +29,7 @@ impl PlsScratch {
             s: vec![0.0; nr],
             e_cv: vec![0.0; nr],
             xu: vec![0.0; nr],
+            ps: vec![0.0; nr],
         }
     }
 }
@@ -56,16 +59,25 @@ pub(crate) fn update_input_means(
     }
 }
 
-/// Projections `s_j` of `x` on the first `np` directions (eq. of the PLS recursion
-/// `xres_{j+1} = xres_j − p_j s_j`).
+/// Projections `s_j` of `x` on the first `np` directions of `u` (eq. of the PLS recursion
+/// `xres_{j+1} = xres_j − p_j s_j`), directions and loadings `R × nr`.
 #[inline(always)]
-pub(crate) fn project(pls: &Pls, nr: usize, np: usize, x: &[f64], xu: &mut [f64], s: &mut [f64]) {
-    xu.copy_from_slice(x);
+pub(crate) fn project(
+    u: &[f64],
+    p: &[f64],
+    nr: usize,
+    np: usize,
+    x: &[f64],
+    xu: &mut [f64],
+    s: &mut [f64],
+) {
+    let (u, p, xu, s) = (&u[..np * nr], &p[..np * nr], &mut xu[..nr], &mut s[..np]);
+    xu.copy_from_slice(&x[..nr]);
     for j in 0..np {
-        let sj = dot(&pls.u[j * nr..(j + 1) * nr], xu);
+        let sj = dot(&u[j * nr..(j + 1) * nr], xu);
         s[j] = sj;
         if j + 1 < np {
-            for (a, &pv) in xu.iter_mut().zip(&pls.p[j * nr..(j + 1) * nr]) {
+            for (a, &pv) in xu.iter_mut().zip(&p[j * nr..(j + 1) * nr]) {
                 *a -= pv * sj;
             }
         }
@@ -84,6 +96,7 @@ pub(crate) struct RegOut {
 
 /// Steps (a, output part) and (b): updates `β₀` with `(ω, inv)` from the input means, then one
 /// weighted PLS update with sample `(x̃, y)` and weight `w`. `ws.s` holds the new projections.
+/// (The PLS state is sliced to its `R` directions once, so the loops need no bounds checks.)
 #[inline(always)]
 pub(crate) fn update_regression(
     pls: &mut Pls,
@@ -96,22 +109,45 @@ pub(crate) fn update_regression(
     pls.beta0 = (omega * pls.beta0 + w * y) / (omega + w);
     let ymz = y - pls.beta0;
     let r = pls.n_reg;
+    let nn = r * nr;
     let PlsScratch {
         xmz,
         xres,
         s,
         e_cv,
         xu,
+        ..
     } = ws;
+    let (xmz, xres, s, e_cv) = (&xmz[..nr], &mut xres[..nn], &mut s[..r], &mut e_cv[..r]);
+    let Pls {
+        u,
+        p,
+        sxy,
+        ssx,
+        beta,
+        ss_s2,
+        ss_yres,
+        sum_w,
+        n_data,
+        lambda,
+        sum_e_cv2,
+        ssp,
+        sum_e2,
+        ..
+    } = &mut *pls;
+    let (u, p, sxy, ssx) = (&mut u[..nn], &mut p[..nn], &mut sxy[..nn], &mut ssx[..nn]);
+    let (beta, ss_s2, ss_yres) = (&mut beta[..r], &mut ss_s2[..r], &mut ss_yres[..r]);
+    let (sum_w, n_data, lambda) = (&mut sum_w[..r], &n_data[..r], &lambda[..r]);
+    let sum_e_cv2 = &mut sum_e_cv2[..r];
     // Projection with the old directions, keeping every residual.
     xres[..nr].copy_from_slice(xmz);
     for j in 0..r {
         let (done, rest) = xres.split_at_mut((j + 1) * nr);
         let xj = &done[j * nr..];
-        let sj = dot(&pls.u[j * nr..(j + 1) * nr], xj);
+        let sj = dot(&u[j * nr..(j + 1) * nr], xj);
         s[j] = sj;
         if j + 1 < r {
-            let pj = &pls.p[j * nr..(j + 1) * nr];
+            let (pj, rest) = (&p[j * nr..(j + 1) * nr], &mut rest[..nr]);
             for i in 0..nr {
                 rest[i] = xj[i] - pj[i] * sj;
             }
@@ -119,19 +155,19 @@ pub(crate) fn update_regression(
     }
     let mut yres = 0.0;
     for j in 0..r {
-        yres += pls.beta[j] * s[j];
-        pls.sum_w[j] = pls.sum_w[j] * pls.lambda[j] + w;
+        yres += beta[j] * s[j];
+        sum_w[j] = sum_w[j] * lambda[j] + w;
         e_cv[j] = ymz - yres;
     }
     let mut ws2 = 0.0;
     for j in 0..r {
-        let lam = pls.lambda[j];
+        let lam = lambda[j];
         let lam_slow = 0.9 + 0.1 * lam;
         let t = if j == 0 { ymz } else { e_cv[j - 1] };
         let wt = w * t;
         let wsj = w * s[j];
         let xj = &xres[j * nr..(j + 1) * nr];
-        let sxy = &mut pls.sxy[j * nr..(j + 1) * nr];
+        let sxy = &mut sxy[j * nr..(j + 1) * nr];
         let mut norm2 = 0.0;
         for i in 0..nr {
             let v = sxy[i] * lam_slow + wt * xj[i];
@@ -140,16 +176,16 @@ pub(crate) fn update_regression(
         }
         if norm2 > 1e-24 {
             let inv = 1.0 / norm2.sqrt();
-            for (u, &v) in pls.u[j * nr..(j + 1) * nr].iter_mut().zip(sxy.iter()) {
+            for (u, &v) in u[j * nr..(j + 1) * nr].iter_mut().zip(sxy.iter()) {
                 *u = v * inv;
             }
         }
-        pls.ss_s2[j] = lam * pls.ss_s2[j] + s[j] * wsj;
-        pls.ss_yres[j] = lam * pls.ss_yres[j] + t * wsj;
-        let inv_s2 = 1.0 / pls.ss_s2[j];
-        pls.beta[j] = pls.ss_yres[j] * inv_s2;
-        let ssx = &mut pls.ssx[j * nr..(j + 1) * nr];
-        let pj = &mut pls.p[j * nr..(j + 1) * nr];
+        ss_s2[j] = lam * ss_s2[j] + s[j] * wsj;
+        ss_yres[j] = lam * ss_yres[j] + t * wsj;
+        let inv_s2 = 1.0 / ss_s2[j];
+        beta[j] = ss_yres[j] * inv_s2;
+        let ssx = &mut ssx[j * nr..(j + 1) * nr];
+        let pj = &mut p[j * nr..(j + 1) * nr];
         for i in 0..nr {
             let v = lam * ssx[i] + wsj * xj[i];
             ssx[i] = v;
@@ -157,17 +193,22 @@ pub(crate) fn update_regression(
         }
         ws2 += wsj * wsj * inv_s2;
     }
-    pls.ssp = pls.lambda[r - 1] * pls.ssp + ws2;
+    *ssp = lambda[r - 1] * *ssp + ws2;
     // New projections.
-    project(pls, nr, r, xmz, xu, s);
-    let np = pls.n_pred(nr);
-    let ypred: f64 = (0..np).map(|j| pls.beta[j] * s[j]).sum();
+    project(u, p, nr, r, xmz, xu, s);
+    // `Pls::n_pred`.
+    let np = if n_data[r - 1] > 2.0 * nr as f64 {
+        r
+    } else {
+        r - 1
+    };
+    let ypred: f64 = (0..np).map(|j| beta[j] * s[j]).sum();
     let e_cv_r = if np == 0 { ymz } else { e_cv[np - 1] };
     let e = ymz - ypred;
-    if pls.n_data[0] * (1.0 - pls.lambda[0]) > 0.1 {
-        pls.sum_e2 = pls.sum_e2 * pls.lambda[r - 1] + w * e * e;
+    if n_data[0] * (1.0 - lambda[0]) > 0.1 {
+        *sum_e2 = *sum_e2 * lambda[r - 1] + w * e * e;
         for j in 0..r {
-            pls.sum_e_cv2[j] = pls.sum_e_cv2[j] * pls.lambda[j] + w * e_cv[j] * e_cv[j];
+            sum_e_cv2[j] = sum_e_cv2[j] * lambda[j] + w * e_cv[j] * e_cv[j];
         }
     }
     RegOut {

@@ -149,6 +149,7 @@ impl Lwpr {
             (7, 21) => self.predict_core::<7, 21>(x, want, strict),
             (6, 9) => self.predict_core::<6, 9>(x, want, strict),
             (3, 9) => self.predict_core::<3, 9>(x, want, strict),
+            (21, 21) => self.predict_core::<21, 21>(x, want, strict),
             _ => self.predict_core::<0, 0>(x, want, strict),
         }
     }
@@ -167,7 +168,7 @@ impl Lwpr {
         let (n_in, ml, ny) = (p.n_in, p.mlen(), p.n_local_out());
         let diag = p.cfg.diag_only;
         let cutoff = p.cfg.cutoff;
-        let qb = p.q_bound(cutoff);
+        let qb = ws.qb_cutoff;
         let mut min_sw = f64::INFINITY;
         if want == Want::Jac {
             ws.jac.iter_mut().for_each(|v| *v = 0.0);
@@ -240,7 +241,7 @@ impl Lwpr {
                     let yk = if want == Want::Conf {
                         let np = pls.n_pred(nr).max(1);
                         let (xu, sv) = (&mut ws.pls.xu, &mut ws.pls.s);
-                        project(pls, nr, np, xc, xu, sv);
+                        project(&pls.u, &pls.p, nr, np, xc, xu, sv);
                         let mut yk = pls.beta0;
                         let mut ss = 0.0;
                         for j in 0..np {

@@ -54,6 +54,12 @@ pub(crate) struct Scratch {
     pub act_x: Vec<f64>,
     /// Result of the cached activation query.
     pub act_out: Vec<crate::Activation>,
+    /// `q_bound(W_UPDATE)` and `q_bound(cutoff)` (a logarithm each, computed once).
+    pub qb_update: f64,
+    /// See `qb_update`.
+    pub qb_cutoff: f64,
+    /// All input divisors are 1 (`x / 1 = x` exactly: normalising is a copy).
+    pub unit_in: bool,
 }
 
 impl Scratch {
@@ -83,6 +89,9 @@ impl Scratch {
             act_cache: None,
             act_x: vec![0.0; n_in],
             act_out: Vec::with_capacity(n_rf.max(64)),
+            qb_update: p.q_bound(crate::params::W_UPDATE),
+            qb_cutoff: p.q_bound(p.cfg.cutoff),
+            unit_in: p.norm_in.iter().all(|&v| v == 1.0),
         }
     }
 
@@ -94,9 +103,15 @@ impl Scratch {
     }
 
     /// Normalises `x` into `xn`, `xk`, `xr`.
+    #[inline(always)]
     pub fn load_x(&mut self, p: &Params, x: &[f64]) {
-        for i in 0..p.n_in {
-            self.xn[i] = x[i] / p.norm_in[i];
+        let xn = &mut self.xn[..p.n_in];
+        if self.unit_in {
+            xn.copy_from_slice(&x[..p.n_in]);
+        } else {
+            for (v, (&a, &n)) in xn.iter_mut().zip(x.iter().zip(&p.norm_in)) {
+                *v = a / n;
+            }
         }
         for (k, &i) in p.kdims.iter().enumerate() {
             self.xk[k] = self.xn[i];
@@ -213,8 +228,8 @@ fn quad_full(c: &[f64], m: &[f64], x: &[f64], dx: &mut [f64], bound: f64) -> f64
         dx[i] = x[i] - c[i];
     }
     let mut q = 0.0;
-    for (n, row) in m.chunks_exact(nk).enumerate() {
-        let v = crate::simd::dot(&row[n..], &dx[n..]);
+    for n in 0..nk {
+        let v = crate::simd::dot(&m[n * nk + n..(n + 1) * nk], &dx[n..]);
         q += v * v;
         if q >= bound {
             return q;

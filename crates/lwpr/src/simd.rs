@@ -17,13 +17,13 @@ pub(crate) fn has_avx2() -> bool {
 #[inline(always)]
 pub(crate) fn max_abs(acc: f64, v: &[f64]) -> f64 {
     let mut l = [acc; 4];
-    let mut it = v.chunks_exact(4);
-    for c in &mut it {
+    let (chunks, rest) = v.as_chunks::<4>();
+    for c in chunks {
         for j in 0..4 {
             l[j] = l[j].max(c[j].abs());
         }
     }
-    for &x in it.remainder() {
+    for &x in rest {
         l[0] = l[0].max(x.abs());
     }
     l[0].max(l[1]).max(l[2].max(l[3]))
@@ -84,9 +84,10 @@ pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
     let n = a.len().min(b.len());
     let (a, b) = (&a[..n], &b[..n]);
     let mut l = [0.0; 4];
-    let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
-    let (ra, rb) = (ca.remainder(), cb.remainder());
-    for (x, y) in ca.zip(cb) {
+    // Fixed-size chunks: no division by a run-time chunk size (`chunks_exact` zipped is not
+    // always inlined into the AVX2 entry points, and then divides).
+    let ((ca, ra), (cb, rb)) = (a.as_chunks::<4>(), b.as_chunks::<4>());
+    for (x, y) in ca.iter().zip(cb) {
         for j in 0..4 {
             l[j] += x[j] * y[j];
         }

@@ -147,7 +147,17 @@ fn loo_cost_derivative_matches_finite_differences() {
     pls.n_data[0] = 1e3;
     pls.lambda[0] = 0.999;
     let mut acc = MetricAcc::default();
-    output_terms(&mut pls, 4, w, &[0.0], ecv, ecv, false, &mut acc);
+    output_terms(
+        &mut pls,
+        4,
+        w,
+        &[0.0],
+        &mut [0.0],
+        ecv,
+        ecv,
+        false,
+        &mut acc,
+    );
     let j1 = |w: f64| (e0 + w * ecv * ecv) / (w0 + w);
     let h = 1e-6;
     let fd = (j1(w + h) - j1(w - h)) / (2.0 * h);
