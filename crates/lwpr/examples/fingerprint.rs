@@ -1,7 +1,8 @@
 //! A fixed workload for speed work: trains one seed of a test, then hashes the saved model and
-//! every prediction, confidence bound and Jacobian on the test inputs (bit patterns), so a
-//! change that alters any floating-point result shows up as a different hash. Prints one JSON
-//! line with the hash, nMSE, RFs and wall µs per update/predict (min over epochs / passes).
+//! every prediction, confidence bound, Jacobian and activation on the test inputs (bit
+//! patterns), so a change that alters any floating-point result shows up as a different hash.
+//! Prints one JSON line with the hash, nMSE, RFs and wall µs per update/predict (min over
+//! epochs / passes).
 //!
 //! `cargo run -p lwpr --release --example fingerprint -- [--test 2|21|21diag|shared]
 //! [--epochs E] [--seed S] [--passes P]` (P timed prediction passes over the test set, 5)
@@ -89,6 +90,15 @@ fn main() {
         se += if ok { (y[0] - ty).powi(2) } else { ty * ty };
         if m.predict_jacobian(x, &mut y, &mut jac).is_ok() {
             jac.iter().for_each(|v| mix(&mut h, v.to_bits()));
+        }
+    }
+    // The partition's activations (every sub-model).
+    let mut acts = Vec::new();
+    for x in &test_d.x {
+        for s in 0..m.n_sub() {
+            m.activations(s, x, 0.001, &mut acts).unwrap();
+            acts.iter()
+                .for_each(|a| mix(&mut h, a.id.0 ^ a.w.to_bits()));
         }
     }
     // Plain predictions, timed (consecutive inputs differ: the repeated-query cache never answers).

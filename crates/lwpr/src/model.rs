@@ -231,11 +231,13 @@ fn update_sub_impl<const NK: usize, const NR: usize>(
     let (mut w1, mut w2) = (None, None);
     ws.active.clear();
     let kern = if diag { &sub.ds } else { &sub.ms };
-    for i in 0..sub.rfs.len() {
+    // Centres and metrics by chunks (no index arithmetic or bounds checks per RF).
+    let rf_chunks = sub.centers.chunks_exact(nk).zip(kern.chunks_exact(ml));
+    for (i, (c, md)) in rf_chunks.enumerate() {
         let q = quad(
             diag,
-            &sub.centers[i * nk..(i + 1) * nk],
-            &kern[i * ml..(i + 1) * ml],
+            c,
+            md,
             &ws.xk[..nk],
             &mut ws.met.dx,
             // An RF at q ≥ max(qb, q2) is neither updated nor among the two most active.

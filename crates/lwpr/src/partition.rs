@@ -243,16 +243,9 @@ impl Lwpr {
         let kern = if diag { &s.ds } else { &s.ms };
         let qb = p.q_bound(cutoff);
         out.clear();
-        for (i, rf) in s.rfs.iter().enumerate() {
-            let c = &s.centers[i * nk..(i + 1) * nk];
-            let q = quad(
-                diag,
-                c,
-                &kern[i * ml..(i + 1) * ml],
-                &ws.xk[..nk],
-                &mut ws.met.dx,
-                qb,
-            );
+        let rf_chunks = s.centers.chunks_exact(nk).zip(kern.chunks_exact(ml));
+        for (rf, (c, md)) in s.rfs.iter().zip(rf_chunks) {
+            let q = quad(diag, c, md, &ws.xk[..nk], &mut ws.met.dx, qb);
             if q < qb {
                 let w = p.kernel(q).0;
                 if w > cutoff {

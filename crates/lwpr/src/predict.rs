@@ -191,12 +191,11 @@ impl Lwpr {
             } = sub;
             let kern = if diag { &*ds } else { &*ms };
             let mut sum_w = 0.0;
-            for (i, rf) in rfs.iter_mut().enumerate() {
+            let rf_chunks = centers.chunks_exact(nk).zip(kern.chunks_exact(ml));
+            for (i, (rf, (c, md))) in rfs.iter_mut().zip(rf_chunks).enumerate() {
                 if !rf.trustworthy {
                     continue;
                 }
-                let c = &centers[i * nk..(i + 1) * nk];
-                let md = &kern[i * ml..(i + 1) * ml];
                 let q = quad(diag, c, md, &ws.xk[..nk], &mut ws.met.dx, qb);
                 if q >= qb {
                     continue;

@@ -196,7 +196,9 @@ fn quad_diag(c: &[f64], d: &[f64], x: &[f64], bound: f64) -> f64 {
     q
 }
 
-/// Full metric, `N` known at compile time (small input spaces).
+/// Full metric, `N` known at compile time (small input spaces). Up to 2-D the bound is not
+/// checked: the full sum costs less than a mispredicted branch (and a value `≥ bound` is
+/// never used beyond the test against it).
 #[inline(always)]
 fn quad_full_n<const N: usize>(c: &[f64], m: &[f64], x: &[f64], bound: f64) -> f64 {
     let (c, m, x) = (&c[..N], &m[..N * N], &x[..N]);
@@ -211,7 +213,7 @@ fn quad_full_n<const N: usize>(c: &[f64], m: &[f64], x: &[f64], bound: f64) -> f
             v += m[n * N + i] * dx[i];
         }
         q += v * v;
-        if q >= bound {
+        if N > 2 && q >= bound {
             return q;
         }
     }
