@@ -93,6 +93,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if let Ok(v) = std::env::var("DYNEVERY") {
         lcfg.dynamics_every = v.parse()?;
     }
+    if let Ok(v) = std::env::var("DYNSOLVE") {
+        lcfg.dynamics_solve_every = v.parse()?;
+    }
     if let Ok(v) = std::env::var("FWDEVERY") {
         lcfg.forward_every = v.parse()?;
     }

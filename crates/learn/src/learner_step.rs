@@ -332,7 +332,9 @@ impl Learner {
             local.pending += 1;
             if local.pending >= self.cfg.update_every {
                 local.pending = 0;
-                if local.updates % dyn_every == 0 && local.dynamics.update().is_ok() {
+                if local.updates % self.cfg.dynamics_solve_every as u64 == 0
+                    && local.dynamics.update().is_ok()
+                {
                     local.dynamics_updates += 1;
                 }
                 match local.rwr.update() {

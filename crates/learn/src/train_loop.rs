@@ -218,7 +218,9 @@ pub fn train<R: Robot + ?Sized>(
     let gravity_on = run.learner.config().gravity_on_policy;
     run.learner.freeze_gravity(!gravity_on);
     let mut xdd_ref = vec![0.0; m];
-    let mut last_u: Option<Vec<f64>> = None;
+    // The previous command of this episode (for the largest command step), if any.
+    let mut last_u = run.u.clone();
+    let mut have_last = false;
     let mut max_step: f64 = 0.0;
     while !run.done() {
         // Return home (and settle) when not at rest there.
@@ -242,7 +244,7 @@ pub fn train<R: Robot + ?Sized>(
                 observe,
                 &mut progress,
             )?;
-            last_u = None;
+            have_last = false;
             continue;
         }
         run.learning = cfg.learn_on_policy;
@@ -267,15 +269,16 @@ pub fn train<R: Robot + ?Sized>(
                 rng,
                 &mut run.u,
             )?;
-            if let Some(l) = &last_u {
-                let d = l
+            if have_last {
+                let d = last_u
                     .iter()
                     .zip(&run.u)
                     .map(|(a, b)| (a - b).abs())
                     .fold(0.0, f64::max);
                 max_step = max_step.max(d);
             }
-            last_u = Some(run.u.clone());
+            last_u.copy_from_slice(&run.u);
+            have_last = true;
             run.step(evaluate, observe, &mut progress)?;
             let target = traj.sample(t + dt);
             let err = axes
@@ -289,7 +292,7 @@ pub fn train<R: Robot + ?Sized>(
                 break;
             }
         }
-        last_u = None;
+        have_last = false;
         progress.max_command_step = max_step;
     }
     // Final evaluation, unless the schedule just made one at this very step.

@@ -161,7 +161,11 @@ fn commands_respect_the_torque_limits_and_bad_limits_are_refused() {
     );
     // Limits from the data sheet reach the config; a wrong count or a non-positive limit is refused.
     assert_eq!(cfg.torque_limits, vec![60.0, 40.0, 20.0]);
-    for bad in [vec![1.0, 1.0], vec![1.0, 0.0, 1.0], vec![1.0, f64::NAN, 1.0]] {
+    for bad in [
+        vec![1.0, 1.0],
+        vec![1.0, 0.0, 1.0],
+        vec![1.0, f64::NAN, 1.0],
+    ] {
         let c = osrl_learn::LearnerConfig {
             torque_limits: bad.clone(),
             ..cfg.clone()

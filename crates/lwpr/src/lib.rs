@@ -50,6 +50,7 @@ mod config;
 mod error;
 mod io;
 mod metric;
+mod metric_call;
 mod metric_full;
 mod model;
 pub mod params;
@@ -57,6 +58,7 @@ mod partition;
 mod pls;
 mod predict;
 mod rf;
+mod rf_update;
 mod scratch;
 mod simd;
 

@@ -2,10 +2,8 @@
 
 use crate::config::{LwprConfig, PruneRule};
 use crate::error::check_vec;
-use crate::metric::{self, MetricAcc};
 use crate::params::{Params, W_UPDATE};
 use crate::partition::{RfEvent, RfId};
-use crate::pls;
 use crate::rf::SubModel;
 use crate::scratch::{quad, Scratch};
 use crate::LwprError;
@@ -164,7 +162,7 @@ fn update_sub(
         // SAFETY: the CPU supports AVX2 (checked at run time).
         return unsafe { update_sub_avx2(p, sub, s, o0, ws, events, next_id) };
     }
-    update_sub_dims(p, sub, s, o0, ws, events, next_id)
+    update_sub_dims::<false>(p, sub, s, o0, ws, events, next_id)
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -178,13 +176,13 @@ unsafe fn update_sub_avx2(
     events: &mut Vec<RfEvent>,
     next_id: &mut u64,
 ) -> (f64, bool, bool) {
-    update_sub_dims(p, sub, s, o0, ws, events, next_id)
+    update_sub_dims::<true>(p, sub, s, o0, ws, events, next_id)
 }
 
 /// Small input spaces get their own copy of the update with the dimensions as constants, so
 /// that the loops over them unroll (the arithmetic is the same).
 #[inline(always)]
-fn update_sub_dims(
+fn update_sub_dims<const AVX: bool>(
     p: &Params,
     sub: &mut SubModel,
     s: usize,
@@ -194,25 +192,25 @@ fn update_sub_dims(
     next_id: &mut u64,
 ) -> (f64, bool, bool) {
     match (p.nk(), p.nr()) {
-        (1, 1) => update_sub_impl::<1, 1>(p, sub, s, o0, ws, events, next_id),
-        (2, 2) => update_sub_impl::<2, 2>(p, sub, s, o0, ws, events, next_id),
+        (1, 1) => update_sub_impl::<1, 1, AVX>(p, sub, s, o0, ws, events, next_id),
+        (2, 2) => update_sub_impl::<2, 2, AVX>(p, sub, s, o0, ws, events, next_id),
         // The shapes of the learned controllers' models (crate `osrl-learn`): the forward model
         // (kernel on `(q, q̇)`, regression on `(q, q̇, u)`) and the gravity model (kernel on `q`,
         // regression on `(q, q̇, q̈)`) of the 7-DOF and the 3-DOF arms.
-        (14, 21) => update_sub_impl::<14, 21>(p, sub, s, o0, ws, events, next_id),
-        (7, 21) => update_sub_impl::<7, 21>(p, sub, s, o0, ws, events, next_id),
-        (6, 9) => update_sub_impl::<6, 9>(p, sub, s, o0, ws, events, next_id),
-        (3, 9) => update_sub_impl::<3, 9>(p, sub, s, o0, ws, events, next_id),
+        (14, 21) => update_sub_impl::<14, 21, AVX>(p, sub, s, o0, ws, events, next_id),
+        (7, 21) => update_sub_impl::<7, 21, AVX>(p, sub, s, o0, ws, events, next_id),
+        (6, 9) => update_sub_impl::<6, 9, AVX>(p, sub, s, o0, ws, events, next_id),
+        (3, 9) => update_sub_impl::<3, 9, AVX>(p, sub, s, o0, ws, events, next_id),
         // 21 inputs: the robot inverse-dynamics benchmark `[q, q̇, q̈]` and the 21-D cross.
-        (21, 21) => update_sub_impl::<21, 21>(p, sub, s, o0, ws, events, next_id),
-        _ => update_sub_impl::<0, 0>(p, sub, s, o0, ws, events, next_id),
+        (21, 21) => update_sub_impl::<21, 21, AVX>(p, sub, s, o0, ws, events, next_id),
+        _ => update_sub_impl::<0, 0, AVX>(p, sub, s, o0, ws, events, next_id),
     }
 }
 
 /// The update of one sub-model; `NK`, `NR` > 0 fix the kernel and regression dimensions at
 /// compile time (0: taken from `p`).
 #[inline(always)]
-fn update_sub_impl<const NK: usize, const NR: usize>(
+fn update_sub_impl<const NK: usize, const NR: usize, const AVX: bool>(
     p: &Params,
     sub: &mut SubModel,
     s: usize,
@@ -222,7 +220,6 @@ fn update_sub_impl<const NK: usize, const NR: usize>(
     next_id: &mut u64,
 ) -> (f64, bool, bool) {
     let nk = if NK > 0 { NK } else { p.nk() };
-    let nr = if NR > 0 { NR } else { p.nr() };
     let (ml, ny) = (p.mlen(), p.n_local_out());
     let diag = p.cfg.diag_only;
     let qb = ws.qb_update;
@@ -259,81 +256,12 @@ fn update_sub_impl<const NK: usize, const NR: usize>(
             }
         }
     }
-    let y = &ws.yn[o0..o0 + ny];
     ws.yacc[..ny].iter_mut().for_each(|v| *v = 0.0);
     let mut sum_w = 0.0;
-    for &(i, w, dwdq, ddwdqdq) in ws.active.iter() {
-        let rf = &mut sub.rfs[i];
-        let omega = rf.outs[0].sum_w[0] * rf.outs[0].lambda[0];
-        pls::update_input_means(nr, rf, omega, &ws.xr, w, &mut ws.pls.xmz);
-        if rf.outs[0].n_data[0] > 2.0 * nr as f64 {
-            rf.trustworthy = true;
-        }
-        let mut acc = MetricAcc::default();
-        for (o, out) in rf.outs.iter_mut().enumerate() {
-            let r = pls::update_regression(out, nr, omega, y[o], w, &mut ws.pls);
-            if rf.trustworthy {
-                ws.yacc[o] += w * r.yp;
-            }
-            if p.cfg.update_d {
-                let (sv, ps) = (&ws.pls.s, &mut ws.pls.ps);
-                metric::output_terms(out, nr, w, sv, ps, r.e_cv, r.e, p.cfg.meta, &mut acc);
-            }
-            out.check_grow(p);
-            pls::forget(out, p.cfg.tau_lambda, p.cfg.final_lambda);
-            // The slope is recomputed when a prediction needs it (`Pls::refresh_slope`).
-            out.slope_stale = true;
-        }
-        if rf.trustworthy {
+    for a in 0..ws.active.len() {
+        let (i, w, dwdq, ddwdqdq) = ws.active[a];
+        if crate::rf_update::update_rf::<NK, NR, AVX>(p, sub, i, w, dwdq, ddwdqdq, o0, ws) {
             sum_w += w;
-        }
-        if acc.n > 0 {
-            let c = &sub.centers[i * nk..(i + 1) * nk];
-            for k in 0..nk {
-                ws.met.dx[k] = ws.xk[k] - c[k];
-            }
-            let (m, d) = (
-                &mut sub.ms[i * ml..(i + 1) * ml],
-                &mut sub.ds[i * ml..(i + 1) * ml],
-            );
-            if !diag {
-                crate::metric_full::full_step(
-                    nk,
-                    p,
-                    m,
-                    d,
-                    &mut rf.alpha,
-                    &mut rf.b,
-                    &mut rf.hm,
-                    acc,
-                    dwdq,
-                    ddwdqdq,
-                    &mut ws.met,
-                );
-                continue;
-            }
-            metric::derivatives(
-                nk,
-                diag,
-                p.cfg.meta,
-                m,
-                d,
-                dwdq,
-                ddwdqdq,
-                p.penalty_n,
-                &mut ws.met,
-            );
-            metric::step(
-                nk,
-                p,
-                m,
-                d,
-                &mut rf.alpha,
-                &mut rf.b,
-                &mut rf.hm,
-                acc,
-                &mut ws.met,
-            );
         }
     }
     for o in 0..ny {

@@ -130,6 +130,8 @@ impl Pls {
 
     /// PLS growth test and step (e): adds direction `R+1` when the last direction explains
     /// enough more than the one before. Returns whether a direction was added.
+    /// (The test is inlined into the update; the growth itself is a separate, cold function.)
+    #[inline(always)]
     pub fn check_grow(&mut self, p: &Params) -> bool {
         let r = self.n_reg;
         let nr = p.nr();
@@ -142,30 +144,39 @@ impl Pls {
             && self.n_data[r - 1] > 0.99 * self.n_data[0]
             && self.n_data[r - 1] * (1.0 - self.lambda[r - 1]) > 0.5
         {
-            for v in [&mut self.u, &mut self.p, &mut self.sxy, &mut self.ssx] {
-                v.resize((r + 1) * nr, 0.0);
-            }
-            self.u[r * nr + r] = 1.0;
-            self.p[r * nr + r] = 1.0;
-            for v in [
-                &mut self.beta,
-                &mut self.ss_yres,
-                &mut self.n_data,
-                &mut self.sum_e_cv2,
-                &mut self.h_tr,
-                &mut self.r_tr,
-            ] {
-                v.push(0.0);
-            }
-            self.ss_s2.push(p.cfg.init_s2);
-            self.sum_w.push(1e-10);
-            self.lambda.push(p.cfg.init_lambda);
-            self.n_reg = r + 1;
-            self.ssp = 0.0;
+            self.grow(p);
             true
         } else {
             false
         }
+    }
+
+    /// Adds direction `R+1` (`u = p = e_{R+1}`).
+    #[cold]
+    #[inline(never)]
+    fn grow(&mut self, p: &Params) {
+        let r = self.n_reg;
+        let nr = p.nr();
+        for v in [&mut self.u, &mut self.p, &mut self.sxy, &mut self.ssx] {
+            v.resize((r + 1) * nr, 0.0);
+        }
+        self.u[r * nr + r] = 1.0;
+        self.p[r * nr + r] = 1.0;
+        for v in [
+            &mut self.beta,
+            &mut self.ss_yres,
+            &mut self.n_data,
+            &mut self.sum_e_cv2,
+            &mut self.h_tr,
+            &mut self.r_tr,
+        ] {
+            v.push(0.0);
+        }
+        self.ss_s2.push(p.cfg.init_s2);
+        self.sum_w.push(1e-10);
+        self.lambda.push(p.cfg.init_lambda);
+        self.n_reg = r + 1;
+        self.ssp = 0.0;
     }
 
     /// Number of directions used for prediction: all but the last while its

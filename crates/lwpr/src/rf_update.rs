@@ -1,0 +1,86 @@
+//! Steps (a)–(d) and (f) of an update for one active receptive field (`shared/LWPR.md`,
+//! "One update"). Inlined into the update (a function of its own per RF was tried: more
+//! instructions, no faster).
+
+use crate::metric::{self, MetricAcc};
+use crate::params::Params;
+use crate::pls;
+use crate::rf::SubModel;
+use crate::scratch::Scratch;
+
+/// Updates RF `i` of `sub` at activation `w` (kernel derivatives `dwdq`, `ddwdqdq`) with the
+/// sample in `ws` (outputs `o0..` of `ws.yn`); adds `w·ŷ_k` to `ws.yacc` when the RF is
+/// trustworthy, and returns whether it is. `NK`, `NR` > 0 fix the dimensions; `AVX` is set
+/// only by the update's AVX2 entry point (after the CPU check).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub(crate) fn update_rf<const NK: usize, const NR: usize, const AVX: bool>(
+    p: &Params,
+    sub: &mut SubModel,
+    i: usize,
+    w: f64,
+    dwdq: f64,
+    ddwdqdq: f64,
+    o0: usize,
+    ws: &mut Scratch,
+) -> bool {
+    let nk = if NK > 0 { NK } else { p.nk() };
+    let nr = if NR > 0 { NR } else { p.nr() };
+    let (ml, ny) = (p.mlen(), p.n_local_out());
+    let diag = p.cfg.diag_only;
+    let y = &ws.yn[o0..o0 + ny];
+    let rf = &mut sub.rfs[i];
+    let omega = rf.outs[0].sum_w[0] * rf.outs[0].lambda[0];
+    pls::update_input_means(nr, rf, omega, &ws.xr, w, &mut ws.pls.xmz);
+    if rf.outs[0].n_data[0] > 2.0 * nr as f64 {
+        rf.trustworthy = true;
+    }
+    let mut acc = MetricAcc::default();
+    for (o, out) in rf.outs.iter_mut().enumerate() {
+        let r = pls::update_regression(out, nr, omega, y[o], w, &mut ws.pls);
+        if rf.trustworthy {
+            ws.yacc[o] += w * r.yp;
+        }
+        if p.cfg.update_d {
+            let (sv, ps) = (&ws.pls.s, &mut ws.pls.ps);
+            metric::output_terms(out, nr, w, sv, ps, r.e_cv, r.e, p.cfg.meta, &mut acc);
+        }
+        out.check_grow(p);
+        pls::forget(out, p.cfg.tau_lambda, p.cfg.final_lambda);
+        // The slope is recomputed when a prediction needs it (`Pls::refresh_slope`).
+        out.slope_stale = true;
+    }
+    let trusted = rf.trustworthy;
+    if acc.n == 0 {
+        return trusted;
+    }
+    let c = &sub.centers[i * nk..(i + 1) * nk];
+    for k in 0..nk {
+        ws.met.dx[k] = ws.xk[k] - c[k];
+    }
+    let (m, d) = (
+        &mut sub.ms[i * ml..(i + 1) * ml],
+        &mut sub.ds[i * ml..(i + 1) * ml],
+    );
+    let (alpha, b, hm) = (&mut rf.alpha, &mut rf.b, &mut rf.hm);
+    if !diag {
+        crate::metric_call::full_step_call::<NK, AVX>(
+            nk,
+            p,
+            m,
+            d,
+            alpha,
+            b,
+            hm,
+            acc,
+            dwdq,
+            ddwdqdq,
+            &mut ws.met,
+        );
+        return trusted;
+    }
+    let (meta, pen) = (p.cfg.meta, p.penalty_n);
+    metric::derivatives(nk, diag, meta, m, d, dwdq, ddwdqdq, pen, &mut ws.met);
+    metric::step(nk, p, m, d, alpha, b, hm, acc, &mut ws.met);
+    trusted
+}
