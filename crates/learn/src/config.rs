@@ -79,7 +79,7 @@ pub struct LearnerConfig {
     /// which vary inside a receptive field, are then exact rather than averaged. Default true.
     pub residual: bool,
     /// Add the offset from the receptive field's centre, `q − c_i`, to the features of eq. 31, so
-    /// each local controller is linear in `q` too. Default false (the paper's features).
+    /// each local controller is linear in `q` too. Default true (false: the paper's features).
     pub position_features: bool,
     /// Weight the hindsight samples by the transformed reward (`true`, RWR) or not (`false`:
     /// plain activation-weighted regression, the supervised-inverse ablation of E6). Default true.
@@ -169,7 +169,7 @@ pub struct LearnerConfig {
     /// scales of torques and accelerations inside the models. Default 1000.
     pub warmup_samples: usize,
     /// Scale of joint velocities in the kernels (rad/s): kernel widths in `q̇` are this many
-    /// times those in `q`. Default 2.
+    /// times those in `q`. Default 10.
     pub velocity_scale: f64,
 }
 
