@@ -1,12 +1,12 @@
-//! How the update calls the full-metric step [`full_step`](crate::metric_full::full_step):
+//! How the update calls the full-metric step [`full_step`]:
 //! inlined for small kernels, otherwise as a function of its own per constant dimension.
 
 use crate::metric::{MetricAcc, MetricScratch};
 use crate::metric_full::full_step;
 use crate::params::Params;
 
-/// Calls [`full_step`](crate::metric_full::full_step): inlined up to 4-D; above, as a function of its own (generic in the
-/// constant dimension `NK`, AVX2 when the caller is the AVX2 update, `AVX`), so that the
+/// Calls [`full_step`]: inlined up to 4-D; above, as a function of its own (generic in the
+/// constant dimension `NK`; AVX2 when the caller is the AVX2 update, `AVX`), so that the
 /// metric step gets its own registers instead of spilling inside the whole update.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
@@ -34,7 +34,7 @@ pub(crate) fn full_step_call<const NK: usize, const AVX: bool>(
     full_step_base::<NK>(nk, p, m, d, alpha, b, hm, acc, dwdq, ddwdqdq, ws)
 }
 
-/// [`full_step`](crate::metric_full::full_step) with AVX2 (same results, see `crate::simd`).
+/// [`full_step`] with AVX2 (same results, see `crate::simd`).
 #[cfg(target_arch = "x86_64")]
 #[allow(clippy::too_many_arguments)]
 #[target_feature(enable = "avx2")]
@@ -55,7 +55,7 @@ unsafe fn full_step_avx2<const NK: usize>(
     full_step_base_inl::<NK>(nk, p, m, d, alpha, b, hm, acc, dwdq, ddwdqdq, ws)
 }
 
-/// [`full_step`](crate::metric_full::full_step) for the baseline target.
+/// [`full_step`] for the baseline target.
 #[allow(clippy::too_many_arguments)]
 #[inline(never)]
 fn full_step_base<const NK: usize>(
@@ -74,7 +74,7 @@ fn full_step_base<const NK: usize>(
     full_step_base_inl::<NK>(nk, p, m, d, alpha, b, hm, acc, dwdq, ddwdqdq, ws)
 }
 
-/// [`full_step`](crate::metric_full::full_step) with `nk = NK` when `NK > 0`.
+/// [`full_step`] with `nk = NK` when `NK > 0`.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn full_step_base_inl<const NK: usize>(
