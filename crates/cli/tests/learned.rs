@@ -63,6 +63,12 @@ fn train_eval_simulate_round_trip() {
         e["evaluated"] == false || e["tracking_rms_mm"].as_f64().unwrap().is_finite(),
         "{e}"
     );
+    // The cost of a command on this model, timed at every evaluated step.
+    let (med, p99) = (
+        e["command_us_median"].as_f64().unwrap(),
+        e["command_us_p99"].as_f64().unwrap(),
+    );
+    assert!(med > 0.0 && p99 >= med, "{e}");
     for f in [
         "eval.csv",
         "path.svg",

@@ -64,6 +64,21 @@ pub struct EvalSeries {
     pub u: Vec<f64>,
     pub u_star: Vec<f64>,
     pub q: Vec<f64>,
+    /// Wall time of each learned command (s): what a controller command costs on this model.
+    pub command_seconds: Vec<f64>,
+}
+
+impl EvalSeries {
+    /// The `p`-quantile (0–1, nearest rank) of the command wall times in µs; `None` if none.
+    pub fn command_us_quantile(&self, p: f64) -> Option<f64> {
+        let mut v = self.command_seconds.clone();
+        if v.is_empty() {
+            return None;
+        }
+        v.sort_by(f64::total_cmp);
+        let k = ((v.len() - 1) as f64 * p.clamp(0.0, 1.0)).round() as usize;
+        Some(v[k] * 1e6)
+    }
 }
 
 /// Evaluation on its own simulated robot with the true model.
@@ -148,6 +163,7 @@ impl Evaluator {
                 meas.xd.as_slice(),
                 &mut xdd_ref,
             );
+            let clock = std::time::Instant::now();
             let src = learner.command::<rand_chacha::ChaCha8Rng>(
                 meas.q.as_slice(),
                 meas.qd.as_slice(),
@@ -155,6 +171,7 @@ impl Evaluator {
                 None,
                 &mut u,
             )?;
+            let command_seconds = clock.elapsed().as_secs_f64();
             self.osc
                 .nominal(meas.q.as_slice(), meas.qd.as_slice(), &mut u0)?;
             self.osc.solve(
@@ -201,6 +218,7 @@ impl Evaluator {
                 self.series.u.extend(&u);
                 self.series.u_star.extend(&u_star);
                 self.series.q.extend(meas.q.iter());
+                self.series.command_seconds.push(command_seconds);
             }
             // The window of whole periods after the first; `all` covers every step, for runs that
             // diverge before the window starts.

@@ -79,6 +79,13 @@ pub fn run(a: Args) -> Result<()> {
         side.sim_training_minutes.into(),
     );
     o.insert("counters".into(), serde_json::to_value(learner.stats())?);
+    // What one learned command costs on this model (wall time, no exploration).
+    let (us50, us99) = (
+        ev.series.command_us_quantile(0.5),
+        ev.series.command_us_quantile(0.99),
+    );
+    o.insert("command_us_median".into(), us50.into());
+    o.insert("command_us_p99".into(), us99.into());
     println!(
         "{} · {:?} · {:.1} s · model trained {:.1} simulated minutes · {} local models",
         setup.model.name(),
@@ -87,6 +94,9 @@ pub fn run(a: Args) -> Result<()> {
         side.sim_training_minutes,
         learner.n_local_models()
     );
+    if let (Some(a), Some(b)) = (us50, us99) {
+        println!("learned command: {a:.2} µs median, {b:.2} µs 99th percentile (wall time)");
+    }
     if !crate::learned::measured(&res) {
         println!("the evaluation diverged during its warm-up period: no metrics");
     } else {
