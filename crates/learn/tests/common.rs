@@ -27,20 +27,19 @@ pub fn planar3() -> Setup {
     }
 }
 
-pub fn learner(s: &Setup) -> Learner {
+/// The default learner config of the set-up's robot (its data sheet's gains and limits).
+pub fn config(s: &Setup) -> LearnerConfig {
     let spec = s.model.spec();
-    Learner::new(
-        3,
-        2,
-        0.002,
-        LearnerConfig::for_robot(
-            &spec.kp,
-            &spec.kd,
-            &spec.q_rest,
-            &s.model.tau_max().collect::<Vec<_>>(),
-        ),
+    LearnerConfig::for_robot(
+        &spec.kp,
+        &spec.kd,
+        &spec.q_rest,
+        &s.model.tau_max().collect::<Vec<_>>(),
     )
-    .unwrap()
+}
+
+pub fn learner(s: &Setup) -> Learner {
+    Learner::new(3, 2, 0.002, config(s)).unwrap()
 }
 
 /// Trains for `minutes` (babbling `babble` of them) and evaluates every `eval_every` minutes.

@@ -81,13 +81,7 @@ fn training_reduces_the_tracking_error_and_beats_the_nominal_controller() {
     assert!(learner.gravity_frozen());
     // The nominal behaviour alone (PD to rest plus learned gravity) does not track the figure-8:
     // compare with a learner whose local controllers never act (min_ess unreachable).
-    let spec = s.model.spec();
-    let mut cfg = osrl_learn::LearnerConfig::for_robot(
-        &spec.kp,
-        &spec.kd,
-        &spec.q_rest,
-        &s.model.tau_max().collect::<Vec<_>>(),
-    );
+    let mut cfg = common::config(&s);
     cfg.min_ess = 1e12;
     let mut nominal_only = osrl_learn::Learner::new(3, 2, 0.002, cfg).unwrap();
     let nominal = common::run(&s, &mut nominal_only, 4.5, 4.0, 0.0, 0);
@@ -152,13 +146,7 @@ fn invalid_training_settings_are_refused_with_the_field_named() {
 #[test]
 fn commands_respect_the_torque_limits_and_bad_limits_are_refused() {
     let s = common::planar3();
-    let spec = s.model.spec();
-    let mut cfg = osrl_learn::LearnerConfig::for_robot(
-        &spec.kp,
-        &spec.kd,
-        &spec.q_rest,
-        &s.model.tau_max().collect::<Vec<_>>(),
-    );
+    let mut cfg = common::config(&s);
     // Limits from the data sheet reach the config; a wrong count or a non-positive limit is refused.
     assert_eq!(cfg.torque_limits, vec![60.0, 40.0, 20.0]);
     for bad in [
