@@ -3,6 +3,7 @@
 //! instructions, no faster).
 
 use crate::metric::{self, MetricAcc};
+use crate::metric_call::FullStep;
 use crate::params::Params;
 use crate::pls;
 use crate::rf::SubModel;
@@ -64,9 +65,7 @@ pub(crate) fn update_rf<const NK: usize, const NR: usize, const AVX: bool>(
     );
     let (alpha, b, hm) = (&mut rf.alpha, &mut rf.b, &mut rf.hm);
     if !diag {
-        crate::metric_call::full_step_call::<NK, AVX>(
-            nk,
-            p,
+        let s = FullStep {
             m,
             d,
             alpha,
@@ -75,8 +74,8 @@ pub(crate) fn update_rf<const NK: usize, const NR: usize, const AVX: bool>(
             acc,
             dwdq,
             ddwdqdq,
-            &mut ws.met,
-        );
+        };
+        crate::metric_call::full_step_call::<NK, AVX>(nk, p, s, &mut ws.met);
         return trusted;
     }
     let (meta, pen) = (p.cfg.meta, p.penalty_n);
