@@ -17,7 +17,7 @@
 //! mass_scale = 1.3
 //! [simulate]
 //! seconds = 12.0
-//! [learner]               # osrl_learn::LearnerConfig (`osrl train`); empty nominal = robot's
+//! [learner]               # osrl_learn::LearnerConfig (`osrl train`); empty nominal, torque_limits = robot's
 //! min_ess = 50.0
 //! [train]                 # osrl_learn::train::TrainConfig (`osrl train`)
 //! minutes = 30.0
@@ -63,8 +63,8 @@ pub struct Config {
     pub model_error: ModelError,
     /// `osrl simulate` settings.
     pub simulate: SimulateConfig,
-    /// The learned controller (`osrl train`). The nominal behaviour's gains and rest posture,
-    /// when left empty, are the robot's ([`Config::learner_for`]).
+    /// The learned controller (`osrl train`). The nominal behaviour's gains and rest posture and
+    /// the torque limits, when left empty, are the robot's ([`Config::learner_for`]).
     pub learner: LearnerConfig,
     /// The training run (`osrl train`): minutes, babbling, task gains, evaluation interval, seed.
     pub train: TrainConfig,
@@ -96,20 +96,13 @@ impl Config {
         toml::from_str(&text).with_context(|| format!("parsing config {}", p.display()))
     }
 
-    /// The `[learner]` section for `model`: empty nominal gains and rest posture filled in from
-    /// the robot's data sheet (its PD gains and rest posture), then validated.
+    /// The `[learner]` section for `model`: empty nominal gains, rest posture and torque limits
+    /// filled in from the robot's data sheet, then validated.
     pub fn learner_for(&self, model: &Model) -> Result<LearnerConfig> {
         let mut l = self.learner.clone();
         let spec = model.spec();
-        for (v, def) in [
-            (&mut l.nominal.kp, &spec.kp),
-            (&mut l.nominal.kd, &spec.kd),
-            (&mut l.nominal.q_rest, &spec.q_rest),
-        ] {
-            if v.is_empty() {
-                v.clone_from(def);
-            }
-        }
+        let tau_max: Vec<f64> = model.tau_max().collect();
+        l.fill_data_sheet(&spec.kp, &spec.kd, &spec.q_rest, &tau_max);
         l.validate(model.nq()).context("[learner] section")?;
         Ok(l)
     }
@@ -169,6 +162,7 @@ mod tests {
         let model = osrl_dynamics::robots::planar3();
         let lc = l.learner_for(&model).unwrap();
         assert_eq!(lc.nominal.kp, model.spec().kp);
+        assert_eq!(lc.torque_limits, model.tau_max().collect::<Vec<_>>());
         assert!(toml::from_str::<Config>("[learner]\nmin_es = 2.0").is_err());
         assert!(toml::from_str::<Config>("[train]\nminutes = -2.0")
             .unwrap()

@@ -233,14 +233,27 @@ impl LearnerConfig {
     /// joint PD gains, rest posture and torque limits (N·m; an infinite limit is stored as
     /// `f64::MAX`, no limit, so the config stays plain JSON). No dynamics parameters.
     pub fn for_robot(kp: &[f64], kd: &[f64], q_rest: &[f64], tau_max: &[f64]) -> Self {
-        Self {
-            nominal: NominalConfig {
-                kp: kp.to_vec(),
-                kd: kd.to_vec(),
-                q_rest: q_rest.to_vec(),
-            },
-            torque_limits: tau_max.iter().map(|t| t.min(f64::MAX)).collect(),
-            ..Self::default()
+        let mut c = Self::default();
+        c.fill_data_sheet(kp, kd, q_rest, tau_max);
+        c
+    }
+
+    /// Fills the data-sheet fields left empty — `nominal.kp`, `nominal.kd`, `nominal.q_rest`
+    /// and `torque_limits` — from a robot's data sheet (as [`LearnerConfig::for_robot`]); fields
+    /// already set are kept.
+    pub fn fill_data_sheet(&mut self, kp: &[f64], kd: &[f64], q_rest: &[f64], tau_max: &[f64]) {
+        let nom = &mut self.nominal;
+        for (v, def) in [
+            (&mut nom.kp, kp),
+            (&mut nom.kd, kd),
+            (&mut nom.q_rest, q_rest),
+        ] {
+            if v.is_empty() {
+                *v = def.to_vec();
+            }
+        }
+        if self.torque_limits.is_empty() {
+            self.torque_limits = tau_max.iter().map(|t| t.min(f64::MAX)).collect();
         }
     }
 
