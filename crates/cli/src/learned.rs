@@ -68,7 +68,7 @@ pub fn save_model(path: &Path, learner: &Learner, sidecar: &Sidecar) -> Result<(
 /// Reads a model saved by [`save_model`]; fails if either file is missing or malformed, or if
 /// they do not fit together (dimensions).
 pub fn load_model(path: &Path) -> Result<(Learner, Sidecar)> {
-    let learner = Learner::load(path).with_context(|| format!("loading {}", path.display()))?;
+    let mut learner = Learner::load(path).with_context(|| format!("loading {}", path.display()))?;
     let side = sidecar_path(path);
     let text = std::fs::read_to_string(&side)
         .with_context(|| format!("reading {} (the model's sidecar)", side.display()))?;
@@ -88,6 +88,14 @@ pub fn load_model(path: &Path) -> Result<(Learner, Sidecar)> {
             side.display(),
             sc.home.len()
         );
+    }
+    // A controller saved without torque limits gets its robot's (data sheet).
+    if learner.config().torque_limits.is_empty() {
+        let model = load_robot(&sc.robot)?;
+        let tau_max: Vec<f64> = model.tau_max().map(|t| t.min(f64::MAX)).collect();
+        learner
+            .set_torque_limits(&tau_max)
+            .with_context(|| format!("torque limits of {} for {}", sc.robot, path.display()))?;
     }
     Ok((learner, sc))
 }

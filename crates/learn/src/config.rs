@@ -91,19 +91,21 @@ pub struct LearnerConfig {
     /// M-step of a local controller after this many new samples. Default 25.
     pub update_every: usize,
     /// The forward model (the partition) learns from every this many transitions; the local
-    /// controllers and their dynamics still learn from every one. Its regression only drives
-    /// its distance-metric learning (`Â` comes from the local dynamics), and it is a large
-    /// cost of a learning step on sarcos7. Default 2 (with `dynamics_solve_every` 4; measured
-    /// together against 1 and 1, exploration cap 0.15: sarcos7 seed 2 nMSE 0.088 at minute 22
-    /// vs 0.080 at minute 17, about 27 % more simulated minutes per wall minute; planar3 seed 0
-    /// after 30 minutes 0.012 vs 0.009).
+    /// controllers still learn from every one (their dynamics from every `dynamics_every`). Its
+    /// regression only drives its distance-metric learning (`Â` comes from the local dynamics),
+    /// and it is a large cost of a learning step on sarcos7. Default 2 (with
+    /// `dynamics_solve_every` 4; measured together against 1 and 1, exploration cap 0.15,
+    /// sarcos7 seed 2, two runs side by side: 30 simulated minutes reached while the other
+    /// reached 22–23, nMSE 0.089 at minute 30 for both; planar3 seed 0 after 30 minutes 0.012
+    /// vs 0.009).
     pub forward_every: usize,
     /// The local dynamics regressions (`Â`) learn from every this many transitions: consecutive
     /// transitions (2 ms apart) carry nearly the same information, and on sarcos7 (71 features
     /// with `dynamics_bilinear`) these regressions were over half of a learning step. Default 1.
     pub dynamics_every: usize,
     /// The local dynamics regressions are re-solved at every this many M-steps of their
-    /// controller (each re-solve factors a 71×71 system on sarcos7). Default 4 (see
+    /// controller (each re-solve factors a 71×71 system on sarcos7): at its 1st, 5th, 9th, …
+    /// M-step with 4. Before this switch existed, `dynamics_every` also set this. Default 4 (see
     /// `forward_every`).
     pub dynamics_solve_every: usize,
     /// Scale of the exploration noise relative to each local controller's `σ_i`. Default 1.
@@ -160,7 +162,7 @@ pub struct LearnerConfig {
     /// Torque limits (N·m), one per joint, from the robot's data sheet: every command of the
     /// learned controller, exploration noise included, is clipped to `±limit` (counted in
     /// [`crate::LearnerStats::clipped`]). Empty: no limits. Default empty;
-    /// [`LearnerConfig::for_robot`] fills it.
+    /// [`LearnerConfig::for_robot`] fills it (and `osrl train` fills it when left empty).
     pub torque_limits: Vec<f64>,
     /// Measurements with `|ẍ|` above this (m/s²) or `|q̇|` above 100·this are rejected as absurd.
     /// Default 1000.
@@ -325,9 +327,10 @@ impl LearnerConfig {
             }
         }
         let tl = &self.torque_limits;
-        if !(tl.is_empty() || tl.len() == n) || tl.iter().any(|t| !(*t > 0.0)) {
+        if !(tl.is_empty() || tl.len() == n) || tl.iter().any(|t| !(*t > 0.0 && t.is_finite())) {
             return bad(format!(
-                "torque_limits needs {n} values > 0 (N·m) or none, got {tl:?}"
+                "torque_limits needs {n} finite values > 0 (N·m) or none (a huge value for a \
+                 joint without a limit), got {tl:?}"
             ));
         }
         if self.warmup_samples < 10 {

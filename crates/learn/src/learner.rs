@@ -16,7 +16,8 @@ pub struct LearnerStats {
     pub samples: u64,
     /// Measurements rejected (non-finite or absurd).
     pub rejected: u64,
-    /// Commands computed, and those that fell back to `u0` because no trained controller was active.
+    /// Commands computed, and those that fell back to `u0`: no trained controller was active,
+    /// or the blend was not finite (then also counted in `non_finite`).
     pub commands: u64,
     pub fallbacks: u64,
     /// Commands extrapolated from trained controllers active below the cutoff.
@@ -114,6 +115,18 @@ impl Learner {
 
     pub fn config(&self) -> &LearnerConfig {
         &self.cfg
+    }
+    /// Sets the torque limits of the commands (N·m, one per joint; empty: none), e.g. on a
+    /// controller saved without them. Fails (nothing changed) on a wrong count or a limit that
+    /// is not finite and > 0.
+    pub fn set_torque_limits(&mut self, tau_max: &[f64]) -> Result<()> {
+        let cfg = LearnerConfig {
+            torque_limits: tau_max.to_vec(),
+            ..self.cfg.clone()
+        };
+        cfg.validate(self.n)?;
+        self.cfg = cfg;
+        Ok(())
     }
     pub fn stats(&self) -> LearnerStats {
         self.stats

@@ -153,6 +153,7 @@ fn commands_respect_the_torque_limits_and_bad_limits_are_refused() {
         vec![1.0, 1.0],
         vec![1.0, 0.0, 1.0],
         vec![1.0, f64::NAN, 1.0],
+        vec![1.0, f64::INFINITY, 1.0],
     ] {
         let c = osrl_learn::LearnerConfig {
             torque_limits: bad.clone(),
@@ -166,8 +167,21 @@ fn commands_respect_the_torque_limits_and_bad_limits_are_refused() {
     }
     // Limits far below gravity: every command (fallback u0, then the learned blend with
     // exploration) stays inside them, and the clipped commands are counted.
+    // A learner without limits gets them set (a bad set changes nothing).
     cfg.torque_limits = vec![0.5, 0.4, 0.3];
-    let mut learner = osrl_learn::Learner::new(3, 2, 0.002, cfg.clone()).unwrap();
+    let mut learner = osrl_learn::Learner::new(
+        3,
+        2,
+        0.002,
+        osrl_learn::LearnerConfig {
+            torque_limits: Vec::new(),
+            ..cfg.clone()
+        },
+    )
+    .unwrap();
+    assert!(learner.set_torque_limits(&[1.0, 2.0]).is_err());
+    assert!(learner.config().torque_limits.is_empty());
+    learner.set_torque_limits(&cfg.torque_limits).unwrap();
     let mut rng = <rand_chacha::ChaCha8Rng as rand::SeedableRng>::seed_from_u64(3);
     let mut u = vec![0.0; 3];
     let q = s.q_start.clone();
