@@ -92,9 +92,9 @@ pub fn load_model(path: &Path) -> Result<(Learner, Sidecar)> {
     // A controller saved without torque limits gets its robot's (data sheet).
     if learner.config().torque_limits.is_empty() {
         let model = load_robot(&sc.robot)?;
-        let tau_max: Vec<f64> = model.tau_max().map(|t| t.min(f64::MAX)).collect();
+        let tau_max: Vec<f64> = model.tau_max().collect();
         learner
-            .set_torque_limits(&tau_max)
+            .set_torque_limits(&LearnerConfig::data_sheet_limits(&tau_max))
             .with_context(|| format!("torque limits of {} for {}", sc.robot, path.display()))?;
     }
     Ok((learner, sc))

@@ -255,8 +255,14 @@ impl LearnerConfig {
             }
         }
         if self.torque_limits.is_empty() {
-            self.torque_limits = tau_max.iter().map(|t| t.min(f64::MAX)).collect();
+            self.torque_limits = Self::data_sheet_limits(tau_max);
         }
+    }
+
+    /// A data sheet's torque limits (N·m) as `torque_limits`: an infinite limit (none) becomes
+    /// `f64::MAX`, so the config stays plain JSON.
+    pub fn data_sheet_limits(tau_max: &[f64]) -> Vec<f64> {
+        tau_max.iter().map(|t| t.min(f64::MAX)).collect()
     }
 
     /// Checks ranges and that the nominal behaviour has `n` joints.

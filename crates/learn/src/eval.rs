@@ -147,7 +147,8 @@ impl Evaluator {
         let mut a_hat = vec![0.0; n * m];
         let mut xdd_ref = vec![0.0; m];
         let (mut window, mut all) = (Acc::new(n), Acc::new(n));
-        let (mut prev_u, mut prev_us): (Option<Vec<f64>>, Option<Vec<f64>>) = (None, None);
+        // The previous step's commands (for the largest command steps), from the second step on.
+        let (mut prev_u, mut prev_us) = (vec![0.0; n], vec![0.0; n]);
         let (mut step_l, mut step_a) = (0.0f64, 0.0f64);
         let mut diverged = false;
         self.series = EvalSeries::default();
@@ -195,22 +196,12 @@ impl Evaluator {
                 .map(|(j, &a)| (meas.x[j] - target.x[a]).powi(2))
                 .sum::<f64>()
                 .sqrt();
-            if let (Some(pu), Some(ps)) = (&prev_u, &prev_us) {
-                step_l = step_l.max(
-                    pu.iter()
-                        .zip(&u)
-                        .map(|(a, b)| (a - b).abs())
-                        .fold(0.0, f64::max),
-                );
-                step_a = step_a.max(
-                    ps.iter()
-                        .zip(&u_star)
-                        .map(|(a, b)| (a - b).abs())
-                        .fold(0.0, f64::max),
-                );
+            if k > 0 {
+                step_l = step_l.max(max_abs_diff(&prev_u, &u));
+                step_a = step_a.max(max_abs_diff(&prev_us, &u_star));
             }
-            prev_u = Some(u.clone());
-            prev_us = Some(u_star.clone());
+            prev_u.copy_from_slice(&u);
+            prev_us.copy_from_slice(&u_star);
             if self.keep_series {
                 self.series.t.push(t);
                 self.series.x_d.extend(axes.iter().map(|&a| target.x[a]));
@@ -355,4 +346,12 @@ impl TrueGain {
         let range = self.b.transpose() * (&self.s_inv * (&self.b * &e));
         (e - range).norm_squared()
     }
+}
+
+/// The largest per-joint change `max_j |a_j − b_j|` between two commands.
+pub(crate) fn max_abs_diff(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
 }

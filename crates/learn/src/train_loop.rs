@@ -270,12 +270,7 @@ pub fn train<R: Robot + ?Sized>(
                 &mut run.u,
             )?;
             if have_last {
-                let d = last_u
-                    .iter()
-                    .zip(&run.u)
-                    .map(|(a, b)| (a - b).abs())
-                    .fold(0.0, f64::max);
-                max_step = max_step.max(d);
+                max_step = max_step.max(crate::eval::max_abs_diff(&last_u, &run.u));
             }
             last_u.copy_from_slice(&run.u);
             have_last = true;
