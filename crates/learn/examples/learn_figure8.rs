@@ -111,6 +111,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if std::env::var("ISO").is_ok() {
         lcfg.exploration = osrl_learn::ExplorationKind::Isotropic;
     }
+    if let Ok(v) = std::env::var("PRUNE") {
+        lcfg.prune_untrained_after = if v == "none" { None } else { Some(v.parse()?) };
+    }
     if let Ok(v) = std::env::var("CAP") {
         lcfg.exploration_cap = v.parse()?;
     }
@@ -156,6 +159,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         2,
     )?;
     let axes = model.task_axes().to_vec();
+    let t0 = std::time::Instant::now();
     let summary = train(
         &mut sim,
         &mut learner,
@@ -166,8 +170,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         &mut |p| {
             if let Some(e) = &p.eval {
                 println!(
-                "{:6.2} min {:10} rfs {:4} trained {:4} | track {:8.2} mm (max {:8.2}) nmse {:7.4} (null {:7.4} nom {:7.4}/{:7.4} Â {:5.3}) cost {:6.3} (var {:.3} c* {:.3}) fallback {:5.3} | episodes {} aborted {}",
-                p.sim_minutes, p.phase, p.n_local_models, p.n_trained, e.tracking_rms_mm, e.tracking_max_mm, e.command_nmse, e.command_nmse_null, e.nominal_nmse, e.nominal_nmse_null, e.gain_error, e.command_cost_ratio, e.u_star_variance, e.u_star_cost, e.fallback_share, p.episodes, p.aborted_episodes
+                "{:6.2} min {:10} rfs {:4} trained {:4} | track {:8.2} mm (max {:8.2}) nmse {:7.4} (null {:7.4} nom {:7.4}/{:7.4} Â {:5.3}) cost {:6.3} (var {:.3} c* {:.3}) fallback {:5.3} | episodes {} aborted {} | wall {:.0} s",
+                p.sim_minutes, p.phase, p.n_local_models, p.n_trained, e.tracking_rms_mm, e.tracking_max_mm, e.command_nmse, e.command_nmse_null, e.nominal_nmse, e.nominal_nmse_null, e.gain_error, e.command_cost_ratio, e.u_star_variance, e.u_star_cost, e.fallback_share, p.episodes, p.aborted_episodes, t0.elapsed().as_secs_f64()
             );
             }
         },

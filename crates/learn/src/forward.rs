@@ -67,6 +67,11 @@ impl ForwardModel {
         Ok(())
     }
 
+    /// Removes a receptive field (queues its `Pruned` event); `false` if there is none.
+    pub fn remove(&mut self, id: RfId) -> Result<bool> {
+        Ok(self.lwpr.remove_rf(0, id)?)
+    }
+
     /// Takes the queued partition events (RFs added or pruned).
     pub fn drain_events(&mut self, out: &mut Vec<RfEvent>) {
         out.extend(self.lwpr.drain_events());

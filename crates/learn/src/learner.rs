@@ -22,6 +22,8 @@ pub struct LearnerStats {
     pub fallbacks: u64,
     /// Commands extrapolated from trained controllers active below the cutoff.
     pub extrapolations: u64,
+    /// Receptive fields removed by `prune_untrained_after` (with their controllers).
+    pub pruned_untrained: u64,
     /// Commands with at least one joint clipped to its torque limit.
     pub clipped: u64,
     /// Commands whose learned blend was not finite and fell back to `u0`.
@@ -36,6 +38,8 @@ pub struct LearnerStats {
 pub(crate) struct Scratch {
     pub acts: Vec<Activation>,
     pub events: Vec<RfEvent>,
+    /// Receptive fields to prune (`prune_untrained_after`).
+    pub stale: Vec<lwpr::RfId>,
     pub phi: Vec<f64>,
     pub u0: Vec<f64>,
     pub du: Vec<f64>,
@@ -85,6 +89,7 @@ impl Learner {
         let ws = Scratch {
             acts: Vec::with_capacity(4096),
             events: Vec::with_capacity(16),
+            stale: Vec::with_capacity(4096),
             phi: vec![0.0; p],
             u0: vec![0.0; n],
             du: vec![0.0; n],

@@ -205,6 +205,20 @@ impl Learner {
         if self.stats.samples % self.cfg.forward_every as u64 == 0 {
             fwd.learn(q, qd, u, cur.xdd.as_slice())?;
         }
+        // Once per second of learning: drop the untrained fields idle for too long.
+        if let Some(after) = self.cfg.prune_untrained_after {
+            let per_second = (1.0 / self.dt).round().max(1.0) as u64;
+            let idle = (after / self.dt).ceil() as u64;
+            let now = self.stats.samples;
+            if now % per_second == 0 && now > idle {
+                self.ws.stale.clear();
+                self.locals
+                    .stale_untrained(self.cfg.min_ess, now - idle, &mut self.ws.stale);
+                for id in &self.ws.stale {
+                    self.stats.pruned_untrained += fwd.remove(*id)? as u64;
+                }
+            }
+        }
         self.ws.events.clear();
         fwd.drain_events(&mut self.ws.events);
         // Follow the partition: new RFs get a controller, pruned ones lose theirs.
@@ -241,6 +255,9 @@ impl Learner {
                             forgetting: self.cfg.dynamics_forgetting,
                         },
                     )?;
+                    if let Some(l) = self.locals.map.get_mut(&id) {
+                        l.last_active = self.stats.samples;
+                    }
                 }
                 RfEvent::Pruned { id, .. } => self.locals.remove(id),
             }
@@ -307,6 +324,7 @@ impl Learner {
             let Some(local) = self.locals.map.get_mut(&a.id) else {
                 continue;
             };
+            local.last_active = self.stats.samples;
             if dyn_now {
                 for i in 0..n {
                     phi_d[2 * n + i] = q[i] - local.center[i];

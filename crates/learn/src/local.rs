@@ -24,6 +24,8 @@ pub struct Local {
     pub updates: u64,
     /// Effective sample size after the last M-step.
     pub ess: f64,
+    /// The learner's sample count when its field was last active above the cutoff (or created).
+    pub last_active: u64,
 }
 
 /// The shape of the local dynamics regressions: number of features and forgetting factor.
@@ -109,6 +111,7 @@ impl LocalControllers {
                 pending: 0,
                 updates: 0,
                 ess: 0.0,
+                last_active: 0,
             },
         );
         Ok(())
@@ -116,6 +119,17 @@ impl LocalControllers {
 
     pub fn remove(&mut self, id: RfId) {
         self.map.remove(&id);
+    }
+
+    /// Appends to `out` the ids of the untrained controllers (`ess < min_ess`) whose field was
+    /// last active before sample `before`.
+    pub fn stale_untrained(&self, min_ess: f64, before: u64, out: &mut Vec<RfId>) {
+        out.extend(
+            self.map
+                .iter()
+                .filter(|(_, l)| l.ess < min_ess && l.last_active < before)
+                .map(|(id, _)| *id),
+        );
     }
 
     pub fn len(&self) -> usize {

@@ -201,3 +201,39 @@ fn commands_respect_the_torque_limits_and_bad_limits_are_refused() {
     }
     assert!(learner.stats().clipped > before, "{:?}", learner.stats());
 }
+
+#[test]
+fn idle_untrained_fields_are_pruned_with_their_controllers() {
+    let s = common::planar3();
+    let run = |after: Option<f64>| {
+        let mut cfg = common::config(&s);
+        cfg.prune_untrained_after = after;
+        let mut l = osrl_learn::Learner::new(3, 2, 0.002, cfg).unwrap();
+        common::run(&s, &mut l, 0.6, 0.4, 0.0, 2);
+        l
+    };
+    let (kept, pruned) = (run(None), run(Some(3.0)));
+    assert_eq!(kept.stats().pruned_untrained, 0);
+    assert!(pruned.stats().pruned_untrained > 0, "{:?}", pruned.stats());
+    assert!(pruned.n_local_models() < kept.n_local_models());
+    // The partition and the controllers still match one to one.
+    let ids = |l: &osrl_learn::Learner| {
+        let fwd: Vec<u64> = (l.forward_model().unwrap().lwpr().rfs(0).unwrap())
+            .map(|v| v.id().0)
+            .collect::<std::collections::BTreeSet<_>>()
+            .into_iter()
+            .collect();
+        let locals: Vec<u64> = l.local_summaries().iter().map(|x| x.id).collect();
+        (fwd, locals)
+    };
+    let (fwd, locals) = ids(&pruned);
+    assert_eq!(fwd, locals);
+    // A bad setting is refused with the field named.
+    let mut cfg = common::config(&s);
+    cfg.prune_untrained_after = Some(0.0);
+    let e = osrl_learn::Learner::new(3, 2, 0.002, cfg)
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(e.contains("prune_untrained_after"), "{e}");
+}

@@ -161,6 +161,33 @@ impl Lwpr {
         self.rfs(sub).ok()?.find(|v| v.id() == id)
     }
 
+    /// Removes the RF `id` from sub-model `sub` and queues an [`RfEvent::Pruned`] for it, so
+    /// learners that follow the partition drop their per-RF state as on any other pruning.
+    /// Returns `Ok(false)` (nothing changed) if there is no such RF; fails on a sub-model index
+    /// out of range. The last RF takes the removed one's storage slot, as in LWPR's own pruning.
+    ///
+    /// ```
+    /// use lwpr::{Lwpr, LwprConfig, RfEvent};
+    /// let mut m = Lwpr::new(1, 1, &LwprConfig::default()).unwrap();
+    /// m.update(&[0.0], &[1.0]).unwrap();
+    /// let id = m.rfs(0).unwrap().next().unwrap().id();
+    /// m.drain_events().for_each(drop);
+    /// assert!(m.remove_rf(0, id).unwrap());
+    /// assert_eq!(m.n_rfs_total(), 0);
+    /// assert_eq!(m.events(), &[RfEvent::Pruned { sub: 0, id }]);
+    /// assert!(!m.remove_rf(0, id).unwrap());
+    /// ```
+    pub fn remove_rf(&mut self, sub: usize, id: RfId) -> Result<bool, LwprError> {
+        self.sub(sub)?;
+        let Some(i) = self.subs[sub].rfs.iter().position(|rf| rf.id == id.0) else {
+            return Ok(false);
+        };
+        self.ws.invalidate();
+        self.subs[sub].remove(&self.p, i);
+        self.events.push(RfEvent::Pruned { sub, id });
+        Ok(true)
+    }
+
     /// Writes into `out` (cleared first) the activations `w > cutoff` of every RF of
     /// sub-model `sub` at input `x`, trustworthy or not. Does not allocate once `out` has
     /// capacity for the result.

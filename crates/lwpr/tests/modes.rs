@@ -147,6 +147,52 @@ fn events_track_additions_and_prunings() {
 }
 
 #[test]
+fn removing_an_rf_drops_only_it_and_learning_goes_on() {
+    let cfg = LwprConfig {
+        init_d: MetricInit::Scalar(25.0),
+        ..Default::default()
+    };
+    let mut m = Lwpr::new(2, 1, &cfg).unwrap();
+    let mut rng = ChaCha8Rng::seed_from_u64(9);
+    let mut sample = |m: &mut Lwpr| {
+        let x = [rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0)];
+        m.update(&x, &[common::cross(x[0], x[1])]).unwrap();
+    };
+    for _ in 0..3000 {
+        sample(&mut m);
+    }
+    m.drain_events().for_each(drop);
+    let x = [0.1, -0.2];
+    let mut before: Vec<Activation> = Vec::new();
+    m.activations(0, &x, 1e-3, &mut before).unwrap();
+    assert!(before.len() >= 2, "several RFs active at x");
+    let gone = before[0].id;
+    let n = m.n_rfs_total();
+    assert!(m.remove_rf(0, gone).unwrap());
+    assert_eq!(m.n_rfs_total(), n - 1);
+    assert_eq!(
+        m.drain_events().collect::<Vec<_>>(),
+        vec![RfEvent::Pruned { sub: 0, id: gone }]
+    );
+    // The cached query of `x` is gone with the RF: the others keep their activations.
+    let mut after = Vec::new();
+    m.activations(0, &x, 1e-3, &mut after).unwrap();
+    let mut expect: Vec<_> = before.iter().filter(|a| a.id != gone).copied().collect();
+    expect.sort_by_key(|a| a.id);
+    after.sort_by_key(|a| a.id);
+    assert_eq!(after, expect);
+    assert!(!m.remove_rf(0, gone).unwrap(), "already removed");
+    assert!(m.remove_rf(1, gone).is_err(), "no sub-model 1");
+    // Learning goes on; ids are never reused; save/load keeps the smaller partition.
+    for _ in 0..3000 {
+        sample(&mut m);
+    }
+    assert!(m.rfs(0).unwrap().all(|v| v.id() != gone));
+    let back = Lwpr::from_bytes(&m.to_bytes()).unwrap();
+    assert_eq!(back.n_rfs_total(), m.n_rfs_total());
+}
+
+#[test]
 fn jacobian_matches_finite_differences_and_conf_is_positive() {
     let mut rng = ChaCha8Rng::seed_from_u64(11);
     let d = common::cross_train(&mut rng, 500);
