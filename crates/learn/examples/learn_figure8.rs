@@ -75,8 +75,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if let Ok(v) = std::env::var("DFORGET") {
         lcfg.dynamics_forgetting = v.parse()?;
     }
-    if std::env::var("NOUPD").is_ok() {
-        lcfg.forward.update_d = false;
+    if std::env::var("FWDUPD").is_ok() {
+        lcfg.forward.update_d = true;
     }
     if let Ok(v) = std::env::var("PENALTY") {
         lcfg.forward.penalty = v.parse()?;

@@ -91,14 +91,16 @@ impl LinearGaussianPolicy {
         check_len("features", self.n_features(), phi.len())?;
         check_len("action out", self.n_actions(), out.len())?;
         check_finite("features", phi)?;
-        for (j, o) in out.iter_mut().enumerate() {
-            *o = self
-                .theta
-                .column(j)
-                .iter()
-                .zip(phi)
-                .map(|(t, f)| t * f)
-                .sum();
+        // Feature by feature into all actions at once: the actions' sums are independent
+        // chains (a column-by-column dot product is one long dependency chain per action),
+        // each still summed in feature order, from −0.0 as `Iterator::sum` does.
+        out.fill(-0.0);
+        let p = phi.len();
+        let theta = self.theta.as_slice();
+        for (f, x) in phi.iter().enumerate() {
+            for (j, o) in out.iter_mut().enumerate() {
+                *o += theta[j * p + f] * x;
+            }
         }
         Ok(())
     }
