@@ -97,13 +97,13 @@ pub struct LearnerConfig {
     /// M-step of a local controller after this many new samples. Default 25.
     pub update_every: usize,
     /// The forward model (the partition) learns from every this many transitions; the local
-    /// controllers still learn from every one (their dynamics from every `dynamics_every`). Its
-    /// regression only drives its distance-metric learning (`Â` comes from the local dynamics),
-    /// and it is a large cost of a learning step on sarcos7. Default 2 (with
-    /// `dynamics_solve_every` 4; measured together against 1 and 1, exploration cap 0.15,
-    /// sarcos7 seed 2, two runs side by side: 30 simulated minutes reached while the other
-    /// reached 22–23, nMSE 0.089 at minute 30 for both; planar3 seed 0 after 30 minutes 0.012
-    /// vs 0.009).
+    /// controllers still learn from every one (their dynamics from every `dynamics_every`).
+    /// With fixed kernels its regression serves no one (`Â` comes from the local dynamics, its
+    /// PLS slopes were 87–96 % off): it places the receptive fields, and a new field needs a
+    /// state visited for longer than this many control periods. Its update was the largest cost
+    /// of a sarcos7 learning step (41 % of the time with 2). Default 8 (`learn_figure8` sarcos7,
+    /// 20 simulated minutes, seeds 0/1: nMSE 0.071/0.057, steady 3.5–4 s of wall time per
+    /// simulated minute, against 0.070/0.052 and about 6 s with 2).
     pub forward_every: usize,
     /// The local dynamics regressions (`Â`) learn from every this many transitions: consecutive
     /// transitions (2 ms apart) carry nearly the same information, and on sarcos7 (71 features
@@ -111,8 +111,10 @@ pub struct LearnerConfig {
     pub dynamics_every: usize,
     /// The local dynamics regressions are re-solved at every this many M-steps of their
     /// controller (each re-solve factors a 71×71 system on sarcos7): at its 1st, 5th, 9th, …
-    /// M-step with 4. Before this switch existed, `dynamics_every` also set this. Default 4 (see
-    /// `forward_every`).
+    /// M-step with 4. Before this switch existed, `dynamics_every` also set this. Default 4
+    /// (measured together with `forward_every` 2 against 1 and 1 on sarcos7 seed 2, two runs
+    /// side by side: 30 simulated minutes reached while the other reached 22–23, nMSE 0.089 at
+    /// minute 30 for both; planar3 seed 0 after 30 minutes 0.012 vs 0.009).
     pub dynamics_solve_every: usize,
     /// Scale of the exploration noise relative to each local controller's `σ_i`. Default 1.
     pub exploration_scale: f64,
@@ -223,7 +225,7 @@ impl Default for LearnerConfig {
             activation_cutoff: 0.05,
             min_ess: 50.0,
             update_every: 25,
-            forward_every: 2,
+            forward_every: 8,
             dynamics_every: 1,
             dynamics_solve_every: 4,
             exploration_scale: 1.0,
