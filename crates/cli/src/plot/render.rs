@@ -70,16 +70,25 @@ fn tf(v: f64, log: bool) -> Option<f64> {
     t.is_finite().then_some(t)
 }
 
-/// Tick label: plain numbers, or decades only on log axes.
-fn tick(v: f64, log: bool) -> String {
-    if log {
-        return if (v - v.round()).abs() < 1e-6 {
-            num(10f64.powi(v.round() as i32))
-        } else {
-            String::new()
-        };
+/// Tick label: plain numbers; on log axes spanning `span` decades, the decades only, or every
+/// tick (two significant digits) when the axis spans less than 1.5 decades and might show no
+/// decade at all.
+fn tick(v: f64, log: bool, span: f64) -> String {
+    if !log {
+        return num(v);
     }
-    num(v)
+    if (v - v.round()).abs() < 1e-6 {
+        return num(10f64.powi(v.round() as i32));
+    }
+    if span >= 1.5 {
+        return String::new();
+    }
+    let x = 10f64.powf(v);
+    if !(1e-3..1e5).contains(&x) {
+        return format!("{x:.1e}");
+    }
+    let decimals = (1 - x.log10().floor() as i32).max(0) as usize;
+    format!("{x:.decimals$}")
 }
 
 fn num(v: f64) -> String {
@@ -163,8 +172,8 @@ fn draw_panel<DB: DrawingBackend>(p: &Panel, cell: &DrawingArea<DB, Shift>) -> R
         .build_cartesian_2d(x0..x1, y0..y1)
         .map_err(err)?;
     let (lx, ly) = (p.log_x, p.log_y);
-    let fx = move |v: &f64| tick(*v, lx);
-    let fy = move |v: &f64| tick(*v, ly);
+    let fx = move |v: &f64| tick(*v, lx, x1 - x0);
+    let fy = move |v: &f64| tick(*v, ly, y1 - y0);
     chart
         .configure_mesh()
         .x_desc(&p.x_label)
@@ -253,4 +262,25 @@ fn draw_panel<DB: DrawingBackend>(p: &Panel, cell: &DrawingArea<DB, Shift>) -> R
             .map_err(err)?;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::tick;
+
+    #[test]
+    fn log_ticks_label_decades_and_short_axes_label_every_tick() {
+        // A wide log axis: decades only.
+        assert_eq!(tick(-1.0, true, 3.0), "0.1");
+        assert_eq!(tick(2.0, true, 3.0), "100");
+        assert_eq!(tick(0.05f64.log10(), true, 3.0), "");
+        // Less than 1.5 decades: every tick, two significant digits.
+        assert_eq!(tick(0.05f64.log10(), true, 0.6), "0.050");
+        assert_eq!(tick(0.063f64.log10(), true, 0.6), "0.063");
+        assert_eq!(tick(1.4f64.log10(), true, 0.6), "1.4");
+        assert_eq!(tick(25f64.log10(), true, 0.6), "25");
+        assert_eq!(tick(2e-5f64.log10(), true, 0.6), "2.0e-5");
+        // Linear axes are unchanged.
+        assert_eq!(tick(0.25, false, 0.6), "0.25");
+    }
 }
