@@ -18,7 +18,8 @@
 //!   [`LwprConfig::regression_dims`]): the kernel lives on some inputs (paper eq. 33), the local
 //!   regression on others (eq. 32);
 //! - **read access to the partition** ([`Lwpr::activations`], [`Lwpr::rfs`], [`RfView`]) with
-//!   stable [`RfId`]s and [`RfEvent`]s when RFs are added or pruned;
+//!   stable [`RfId`]s and [`RfEvent`]s when RFs are added or pruned, and removal of an RF by
+//!   its owner ([`Lwpr::remove_rf`], e.g. fields a learner never uses);
 //! - **no silent zero**: prediction without any active RF is [`LwprError::NoActiveRf`].
 //!
 //! Update and predict reuse buffers held by the model and do not allocate in steady state.
