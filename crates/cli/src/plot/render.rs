@@ -71,8 +71,9 @@ fn tf(v: f64, log: bool) -> Option<f64> {
 }
 
 /// Tick label: plain numbers; on log axes spanning `span` decades, the decades only, or every
-/// tick (two significant digits) when the axis spans less than 1.5 decades and might show no
-/// decade at all.
+/// tick when the axis spans less than 1.5 decades and might show no decade at all, with enough
+/// significant digits (at least 2) that neighbouring ticks (about a tenth of the span apart)
+/// differ.
 fn tick(v: f64, log: bool, span: f64) -> String {
     if !log {
         return num(v);
@@ -84,11 +85,19 @@ fn tick(v: f64, log: bool, span: f64) -> String {
         return String::new();
     }
     let x = 10f64.powf(v);
+    // Relative step between neighbouring ticks ≈ ln 10 · span / 10.
+    let step = (std::f64::consts::LN_10 * span / 10.0).max(1e-12);
+    let sig = ((-step.log10()).ceil() as i32 + 1).clamp(2, 12);
     if !(1e-3..1e5).contains(&x) {
-        return format!("{x:.1e}");
+        return format!("{x:.*e}", (sig - 1) as usize);
     }
-    let decimals = (1 - x.log10().floor() as i32).max(0) as usize;
-    format!("{x:.decimals$}")
+    let decimals = (sig - 1 - x.log10().floor() as i32).max(0) as usize;
+    let s = format!("{x:.decimals$}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
 }
 
 fn num(v: f64) -> String {
@@ -274,12 +283,20 @@ mod tests {
         assert_eq!(tick(-1.0, true, 3.0), "0.1");
         assert_eq!(tick(2.0, true, 3.0), "100");
         assert_eq!(tick(0.05f64.log10(), true, 3.0), "");
-        // Less than 1.5 decades: every tick, two significant digits.
-        assert_eq!(tick(0.05f64.log10(), true, 0.6), "0.050");
+        // Less than 1.5 decades: every tick, two significant digits (trailing zeros dropped).
+        assert_eq!(tick(0.05f64.log10(), true, 0.6), "0.05");
         assert_eq!(tick(0.063f64.log10(), true, 0.6), "0.063");
         assert_eq!(tick(1.4f64.log10(), true, 0.6), "1.4");
         assert_eq!(tick(25f64.log10(), true, 0.6), "25");
         assert_eq!(tick(2e-5f64.log10(), true, 0.6), "2.0e-5");
+        // A very short axis (0.991–1.0): enough digits that neighbouring ticks differ.
+        let span = 1.0f64.log10() - 0.991f64.log10();
+        assert_eq!(tick(0.992f64.log10(), true, span), "0.992");
+        assert_eq!(tick(0.9925f64.log10(), true, span), "0.9925");
+        assert_ne!(
+            tick(0.993f64.log10(), true, span),
+            tick(0.994f64.log10(), true, span)
+        );
         // Linear axes are unchanged.
         assert_eq!(tick(0.25, false, 0.6), "0.25");
     }
