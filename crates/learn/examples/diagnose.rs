@@ -48,8 +48,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             *field = v;
         }
     }
-    if std::env::var("NOUPD").is_ok() {
-        lcfg.forward.update_d = false;
+    if std::env::var("FWDUPD").is_ok() {
+        lcfg.forward.update_d = true;
     }
     if std::env::var("NOPROD").is_ok() {
         lcfg.gravity_velocity_products = false;

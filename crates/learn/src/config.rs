@@ -172,12 +172,14 @@ pub struct LearnerConfig {
     /// [`crate::LearnerStats::clipped`]). Empty: no limits. Default empty;
     /// [`LearnerConfig::for_robot`] fills it (and `osrl train` fills it when left empty).
     pub torque_limits: Vec<f64>,
-    /// Receptive fields whose controller is not trained (effective sample size below
-    /// `min_ess`) and that were not active above `activation_cutoff` for this many seconds of
-    /// learning are removed from the partition, with their controller; a later visit creates a
-    /// new one. `None`: never. Default 60. Such fields come from the failing early episodes of
-    /// sarcos7 (1,600–4,500 fields, of which 150–440 ever trained, in 60-minute runs without
-    /// this rule) and every command and learning step scans all fields.
+    /// Receptive fields whose controller is not trained at present (effective sample size
+    /// after its last M-step below `min_ess`, so not in the blend) and that were not active
+    /// above `activation_cutoff` for this many seconds of learning are removed from the
+    /// partition, with their controller; a later visit creates a new one. `None`: never (in a
+    /// TOML file, where a missing key means the default, a huge value such as `1e300` switches
+    /// it off). Default 60. Such fields come from the failing early episodes of sarcos7
+    /// (1,600–4,500 fields, of which 150–440 ever trained, in 60-minute runs without this rule)
+    /// and every command and learning step scans all fields.
     pub prune_untrained_after: Option<f64>,
     /// Measurements with `|ẍ|` above this (m/s²) or `|q̇|` above 100·this are rejected as absurd.
     /// Default 1000.
