@@ -187,6 +187,29 @@ impl Learner {
         Ok(CommandSource::Fallback)
     }
 
+    /// Once per second of learning (`prune_untrained_after`): removes from the partition the
+    /// fields whose controller is not trained and that were idle for too long; their `Pruned`
+    /// events then drop the controllers.
+    fn prune_idle_untrained(&mut self) -> Result<()> {
+        let (Some(after), Some(fwd)) = (self.cfg.prune_untrained_after, self.forward.as_mut())
+        else {
+            return Ok(());
+        };
+        let per_second = (1.0 / self.dt).round().max(1.0) as u64;
+        let idle = (after / self.dt).ceil() as u64;
+        let now = self.stats.samples;
+        if now % per_second != 0 || now <= idle {
+            return Ok(());
+        }
+        self.ws.stale.clear();
+        self.locals
+            .stale_untrained(self.cfg.min_ess, now - idle, &mut self.ws.stale);
+        for id in &self.ws.stale {
+            self.stats.pruned_untrained += fwd.remove(*id)? as u64;
+        }
+        Ok(())
+    }
+
     /// Learning from a checked transition once the models exist.
     pub(crate) fn learn_ready(&mut self, prev: &Measurement, cur: &Measurement) -> Result<()> {
         let (n, m) = (self.n, self.m);
@@ -205,20 +228,8 @@ impl Learner {
         if self.stats.samples % self.cfg.forward_every as u64 == 0 {
             fwd.learn(q, qd, u, cur.xdd.as_slice())?;
         }
-        // Once per second of learning: drop the untrained fields idle for too long.
-        if let Some(after) = self.cfg.prune_untrained_after {
-            let per_second = (1.0 / self.dt).round().max(1.0) as u64;
-            let idle = (after / self.dt).ceil() as u64;
-            let now = self.stats.samples;
-            if now % per_second == 0 && now > idle {
-                self.ws.stale.clear();
-                self.locals
-                    .stale_untrained(self.cfg.min_ess, now - idle, &mut self.ws.stale);
-                for id in &self.ws.stale {
-                    self.stats.pruned_untrained += fwd.remove(*id)? as u64;
-                }
-            }
-        }
+        self.prune_idle_untrained()?;
+        let fwd = self.forward.as_mut().expect("models exist");
         self.ws.events.clear();
         fwd.drain_events(&mut self.ws.events);
         // Follow the partition: new RFs get a controller, pruned ones lose theirs.
