@@ -5,7 +5,8 @@
 //! epochs / passes).
 //!
 //! `cargo run -p lwpr --release --example fingerprint -- [--test 2|21|21diag|shared]
-//! [--epochs E] [--seed S] [--passes P]` (P timed prediction passes over the test set, 5)
+//! [--epochs E] [--seed S] [--passes P] [--per-epoch]` (P timed prediction passes over the test
+//! set, 5; `--per-epoch` prints each epoch's µs per update on stderr)
 
 #[path = "../tests/common/mod.rs"]
 mod common;
@@ -67,15 +68,25 @@ fn main() {
     let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x5eed);
     let mut t = vec![0.0; n_out];
     let mut upd_us = f64::INFINITY;
+    let per_epoch = args.iter().any(|a| a == "--per-epoch");
     for _ in 0..epochs {
         order.shuffle(&mut rng);
         let t0 = Instant::now();
+        let mut n_upd = 0;
         for &i in &order {
             // Output o: the target scaled by (1 + o) (shared mode regresses both).
             (0..n_out).for_each(|o| t[o] = train.y[i] * (1 + o) as f64);
-            m.update(&train.x[i], &t).unwrap();
+            n_upd += m.update(&train.x[i], &t).unwrap().updated;
         }
-        upd_us = upd_us.min(t0.elapsed().as_secs_f64() * 1e6 / order.len() as f64);
+        let us = t0.elapsed().as_secs_f64() * 1e6 / order.len() as f64;
+        if per_epoch {
+            let per = n_upd as f64 / order.len() as f64;
+            eprintln!(
+                "epoch µs/update {us:.3} rfs {} RF-updates/update {per:.2}",
+                m.n_rfs_total()
+            );
+        }
+        upd_us = upd_us.min(us);
     }
     let mut h = 0xcbf2_9ce4_8422_2325u64;
     for b in m.to_bytes() {

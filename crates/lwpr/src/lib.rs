@@ -53,6 +53,7 @@ mod io;
 mod metric;
 mod metric_call;
 mod metric_full;
+mod metric_wide;
 mod model;
 pub mod params;
 mod partition;

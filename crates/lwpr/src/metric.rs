@@ -31,6 +31,9 @@ pub(crate) struct MetricScratch {
     pub pad_b: Vec<f64>,
     /// One padded row.
     pub row: Vec<f64>,
+    /// Padded copies of the state for the full-metric step above 4 dimensions
+    /// ([`super::metric_wide::wide_step`]).
+    pub wide: Vec<f64>,
 }
 
 impl MetricScratch {
@@ -52,6 +55,11 @@ impl MetricScratch {
             pad_a: vec![0.0; pad],
             pad_b: vec![0.0; pad],
             row: vec![0.0; super::metric_full::padded(nk)],
+            wide: if mlen == nk * nk && nk > 4 {
+                vec![0.0; super::metric_wide::wide_len(nk)]
+            } else {
+                Vec::new()
+            },
         }
     }
 }

@@ -1,5 +1,6 @@
-//! How the update calls the full-metric step [`full_step`]:
-//! inlined for small kernels, otherwise as a function of its own per constant dimension.
+//! How the update calls the full-metric step: [`full_step`] inlined for kernels of up to 4
+//! dimensions; above, [`crate::metric_wide::wide_step`] as a function of its own per constant
+//! dimension.
 
 use crate::metric::{MetricAcc, MetricScratch};
 use crate::metric_full::full_step;
@@ -22,9 +23,10 @@ pub(crate) struct FullStep<'a> {
     pub ddwdqdq: f64,
 }
 
-/// Calls [`full_step`]: inlined up to 4-D; above, as a function of its own (generic in the
-/// constant dimension `NK`; AVX2 when the caller is the AVX2 update, `AVX`), so that the
-/// metric step gets its own registers instead of spilling inside the whole update.
+/// Calls [`full_step`] inlined up to 4-D; above, [`crate::metric_wide::wide_step`] as a
+/// function of its own (generic in the constant dimension `NK`; AVX2 and FMA when the caller
+/// is the AVX2 update, `AVX`), so that the metric step gets its own registers instead of
+/// spilling inside the whole update.
 #[inline(always)]
 pub(crate) fn full_step_call<const NK: usize, const AVX: bool>(
     nk: usize,
@@ -47,20 +49,21 @@ pub(crate) fn full_step_call<const NK: usize, const AVX: bool>(
     }
     #[cfg(target_arch = "x86_64")]
     if AVX {
-        // SAFETY: `AVX` is only set by the update's AVX2 entry point (after the CPU check).
+        // SAFETY: `AVX` is only set by the update's AVX2 entry point (after the CPU check,
+        // which includes FMA).
         return unsafe { full_step_avx2::<NK>(nk, p, m, d, alpha, b, hm, acc, dwdq, ddwdqdq, ws) };
     }
     full_step_base::<NK>(nk, p, m, d, alpha, b, hm, acc, dwdq, ddwdqdq, ws)
 }
 
-/// Defines `$name`, [`full_step`] as a function of its own with `nk = NK` when `NK > 0`
+/// Defines `$name`, `wide_step` as a function of its own with `nk = NK` when `NK > 0`
 /// (one argument list for both copies; separate arguments, not a [`FullStep`], see there).
 macro_rules! full_step_copy {
     ($(#[$attr:meta])* $name:ident $(, $unsafe:ident)?) => {
         $(#[$attr])*
         #[allow(clippy::too_many_arguments)]
         #[inline(never)]
-        $($unsafe)? fn $name<const NK: usize>(
+        pub(crate) $($unsafe)? fn $name<const NK: usize>(
             nk: usize,
             p: &Params,
             m: &mut [f64],
@@ -73,19 +76,18 @@ macro_rules! full_step_copy {
             ddwdqdq: f64,
             ws: &mut MetricScratch,
         ) {
-            let nk = if NK > 0 { NK } else { nk };
-            full_step(nk, p, m, d, alpha, b, hm, acc, dwdq, ddwdqdq, ws)
+            crate::metric_wide::wide_step::<NK>(nk, p, m, d, alpha, b, hm, acc, dwdq, ddwdqdq, ws)
         }
     };
 }
 
 full_step_copy!(
-    /// [`full_step`] with AVX2 (same results, see `crate::simd`).
+    /// `wide_step` with AVX2 and FMA (same results, see `crate::metric_wide`).
     #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
+    #[target_feature(enable = "avx2,fma")]
     full_step_avx2, unsafe
 );
 full_step_copy!(
-    /// [`full_step`] for the baseline target.
+    /// `wide_step` for the baseline target (FMA in software).
     full_step_base
 );

@@ -36,6 +36,9 @@ pub struct UpdateInfo {
     pub added: usize,
     /// RFs pruned by this update (at most one per sub-model).
     pub pruned: usize,
+    /// RF updates done (RFs with activation above 0.001, summed over the sub-models); the
+    /// cost of an update is roughly proportional to it.
+    pub updated: usize,
 }
 
 impl Lwpr {
@@ -116,6 +119,7 @@ impl Lwpr {
             max_w: 0.0,
             added: 0,
             pruned: 0,
+            updated: 0,
         };
         let ny = p.n_local_out();
         for (s, sub) in subs.iter_mut().enumerate() {
@@ -124,6 +128,7 @@ impl Lwpr {
             info.max_w = info.max_w.max(r.0);
             info.added += r.1 as usize;
             info.pruned += r.2 as usize;
+            info.updated += ws.active.len();
         }
         for o in 0..p.n_out {
             ws.last_yp[o] *= p.norm_out[o];

@@ -4,10 +4,26 @@
 use crate::config::{LwprConfig, MetricInit};
 use crate::metric::{derivatives, step, MetricAcc, MetricScratch};
 use crate::metric_full::full_step;
+use crate::params::Params;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-fn check(nk: usize, meta: bool, seed: u64) {
+/// A random full-metric RF state (`M` upper-triangular with `D = MᵀM`, `α`, `b = ln α`, IDBD
+/// memory), sample offset `x − c` in the scratch, output sums and kernel derivatives.
+pub(super) struct Case {
+    pub p: Params,
+    pub m: Vec<f64>,
+    pub d: Vec<f64>,
+    pub alpha: Vec<f64>,
+    pub b: Vec<f64>,
+    pub hm: Vec<f64>,
+    pub ws: MetricScratch,
+    pub acc: MetricAcc,
+    pub dwdq: f64,
+    pub ddwdqdq: f64,
+}
+
+pub(super) fn case(nk: usize, meta: bool, seed: u64) -> Case {
     let cfg = LwprConfig {
         diag_only: false,
         meta,
@@ -44,7 +60,33 @@ fn check(nk: usize, meta: bool, seed: u64) {
         c: rng.random_range(-2.0..2.0),
         n: 1,
     };
-    let (dwdq, ddwdqdq) = (-0.31, 0.155);
+    Case {
+        p,
+        m,
+        d,
+        alpha,
+        b,
+        hm,
+        ws,
+        acc,
+        dwdq: -0.31,
+        ddwdqdq: 0.155,
+    }
+}
+
+fn check(nk: usize, meta: bool, seed: u64) {
+    let Case {
+        p,
+        m,
+        d,
+        alpha,
+        b,
+        hm,
+        mut ws,
+        acc,
+        dwdq,
+        ddwdqdq,
+    } = case(nk, meta, seed);
     let (mut m1, mut d1, mut a1, mut b1, mut h1) =
         (m.clone(), d.clone(), alpha.clone(), b.clone(), hm.clone());
     let mut ws1 = ws.clone();

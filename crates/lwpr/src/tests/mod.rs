@@ -1,5 +1,7 @@
-//! Unit tests of internals: derivatives against finite differences, PLS exactness.
+//! Unit tests of internals: derivatives against finite differences, PLS exactness, the
+//! metric steps against each other.
 
 mod derivatives;
 mod fused;
 mod pls_exact;
+mod wide;

@@ -1,0 +1,133 @@
+//! The full-metric step above 4 dimensions (`metric_wide::wide_step`) against the fused step
+//! of `metric_full` (itself bit-identical to the separate derivatives and step): the same
+//! maths with other roundings, so equal to a relative 1e-12; its AVX2+FMA and baseline copies
+//! bit-identical; its exponential within an ulp of `f64::exp`.
+
+use super::fused::{case, Case};
+use crate::metric_full::full_step;
+
+/// Runs the reference and the wide step on the same case; returns both results
+/// `[M, D, α, b, h]`.
+fn both(nk: usize, meta: bool, seed: u64) -> ([Vec<f64>; 5], [Vec<f64>; 5]) {
+    let Case {
+        p,
+        m,
+        d,
+        alpha,
+        b,
+        hm,
+        mut ws,
+        acc,
+        dwdq,
+        ddwdqdq,
+    } = case(nk, meta, seed);
+    let mut r = [m.clone(), d.clone(), alpha.clone(), b.clone(), hm.clone()];
+    let mut ws1 = ws.clone();
+    let [m1, d1, a1, b1, h1] = &mut r;
+    full_step(nk, &p, m1, d1, a1, b1, h1, acc, dwdq, ddwdqdq, &mut ws1);
+    let mut w = [m, d, alpha, b, hm];
+    let [m2, d2, a2, b2, h2] = &mut w;
+    crate::metric_wide::wide_step::<0>(nk, &p, m2, d2, a2, b2, h2, acc, dwdq, ddwdqdq, &mut ws);
+    (r, w)
+}
+
+#[test]
+fn wide_step_matches_the_fused_step() {
+    for nk in [5, 6, 7, 8, 9, 13, 21, 37] {
+        for meta in [false, true] {
+            for seed in 0..3 {
+                let before = case(nk, meta, seed);
+                let (r, w) = both(nk, meta, seed);
+                let names = ["M", "D", "alpha", "b", "h"];
+                for (k, name) in names.iter().enumerate() {
+                    let scale = r[k].iter().fold(0.0f64, |a, v| a.max(v.abs()));
+                    for i in 0..nk * nk {
+                        let (row, col) = (i / nk, i % nk);
+                        let (x, y) = (r[k][i], w[k][i]);
+                        if *name != "D" && col < row {
+                            // Below the diagonal: M stays zero, the rest untouched.
+                            let orig = [&before.m, &before.d, &before.alpha, &before.b, &before.hm];
+                            assert_eq!(y.to_bits(), orig[k][i].to_bits(), "{name}[{row},{col}]");
+                            continue;
+                        }
+                        let tol = 1e-12 * x.abs().max(1e-6 * scale);
+                        assert!(
+                            (x - y).abs() <= tol,
+                            "{name}[{row},{col}] nk {nk} meta {meta} seed {seed}: {x:e} vs {y:e}"
+                        );
+                    }
+                }
+                // D = MᵀM comes out exactly symmetric.
+                for i in 0..nk {
+                    for j in 0..i {
+                        assert_eq!(w[1][i * nk + j], w[1][j * nk + i], "D[{i},{j}]");
+                    }
+                }
+                // The step did something (the test is not vacuous).
+                assert!(r[0] != before.m, "nk {nk}: M unchanged");
+            }
+        }
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+#[test]
+fn wide_step_copies_give_the_same_bits() {
+    if !crate::simd::has_avx2() {
+        return;
+    }
+    for nk in [5, 9, 21, 37] {
+        for meta in [false, true] {
+            let c = case(nk, meta, 7);
+            let run = |avx: bool| {
+                let Case {
+                    p,
+                    mut m,
+                    mut d,
+                    mut alpha,
+                    mut b,
+                    mut hm,
+                    mut ws,
+                    acc,
+                    dwdq,
+                    ddwdqdq,
+                } = case(nk, meta, 7);
+                let (mm, dd, aa, bb, hh) = (&mut m, &mut d, &mut alpha, &mut b, &mut hm);
+                if avx {
+                    // SAFETY: the CPU has AVX2 and FMA (checked above).
+                    unsafe {
+                        crate::metric_call::full_step_avx2::<0>(
+                            nk, &p, mm, dd, aa, bb, hh, acc, dwdq, ddwdqdq, &mut ws,
+                        )
+                    }
+                } else {
+                    crate::metric_call::full_step_base::<0>(
+                        nk, &p, mm, dd, aa, bb, hh, acc, dwdq, ddwdqdq, &mut ws,
+                    )
+                }
+                [m, d, alpha, b, hm]
+            };
+            let (x, y) = (run(true), run(false));
+            assert!(x[0] != c.m);
+            for k in 0..5 {
+                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(&x[k]), bits(&y[k]), "array {k}, nk {nk}, meta {meta}");
+            }
+        }
+    }
+}
+
+#[test]
+fn exp4_is_accurate() {
+    let mut worst: f64 = 0.0;
+    let n = 100_000;
+    for i in 0..=n {
+        let x = -10.0 + 20.0 * i as f64 / n as f64;
+        let v = crate::metric_wide::exp4([x, -x, 0.5 * x, x + 1e-9]);
+        for (l, t) in [x, -x, 0.5 * x, x + 1e-9].into_iter().enumerate() {
+            worst = worst.max(((v[l] - t.exp()) / t.exp()).abs());
+        }
+    }
+    assert_eq!(crate::metric_wide::exp4([0.0; 4]), [1.0; 4]);
+    assert!(worst < 3e-16, "relative error {worst:e}");
+}
