@@ -31,7 +31,7 @@ pub(crate) struct MetricScratch {
     pub pad_b: Vec<f64>,
     /// One padded row.
     pub row: Vec<f64>,
-    /// Padded copies of the state for the full-metric step above 4 dimensions
+    /// Scratch of the full-metric step above 4 dimensions
     /// ([`super::metric_wide::wide_step`]).
     pub wide: Vec<f64>,
 }
