@@ -42,6 +42,8 @@ enum Command {
     Eval(cmd::eval::Args),
     /// Run the experiments and write the report folder (index.html, results.json, figures).
     Reproduce(cmd::reproduce::Args),
+    /// Benchmarks: `osrl bench lwpr --json` (LWPR accuracy and µs per update/predict).
+    Bench(cmd::bench::Args),
 }
 
 fn main() {
@@ -55,6 +57,7 @@ fn main() {
         Command::Train(a) => cmd::train::run(a),
         Command::Eval(a) => cmd::eval::run(a),
         Command::Reproduce(a) => cmd::reproduce::run(a),
+        Command::Bench(a) => cmd::bench::run(a),
     };
     if let Err(e) = result {
         // One line: the whole cause chain.

@@ -22,6 +22,9 @@
 //!   its owner ([`Lwpr::remove_rf`], e.g. fields a learner never uses);
 //! - **no silent zero**: prediction without any active RF is [`LwprError::NoActiveRf`].
 //!
+//! The reference library's accuracy benchmarks (the 2-D cross and its 21-D rotation) are in
+//! [`datasets`]; `osrl bench lwpr --json` runs them.
+//!
 //! Update and predict reuse buffers held by the model and do not allocate in steady state.
 //! Models save and load bit-exactly ([`Lwpr::save`], [`Lwpr::load`]).
 //!
@@ -48,6 +51,7 @@
 #![allow(clippy::needless_range_loop)] // index loops mirror the maths
 
 mod config;
+pub mod datasets;
 mod error;
 mod io;
 mod metric;

@@ -1,5 +1,6 @@
 //! One module per subcommand.
 
+pub mod bench;
 pub mod dynamics;
 pub mod eval;
 pub mod lwpr;

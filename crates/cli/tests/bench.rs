@@ -1,0 +1,62 @@
+//! `osrl bench lwpr`: a small configuration of the LWPR benchmarks.
+
+mod common;
+use common::{last_json, osrl};
+
+#[test]
+fn bench_lwpr_reports_the_selected_tests() {
+    let args = [
+        "bench",
+        "lwpr",
+        "--seeds",
+        "2",
+        "--only",
+        "cross2,sarcos7",
+        "--traj",
+        "2",
+        "--seconds",
+        "2",
+        "--epochs",
+        "1",
+        "--json",
+    ];
+    let (ok, out, err) = osrl(&args);
+    assert!(ok, "{err}");
+    let v = last_json(&out);
+    assert!(v.get("cross_21d").is_none(), "not selected");
+    let c = &v["cross_2d"];
+    assert_eq!(c["seeds"], 2);
+    let nmse: Vec<f64> = serde_json::from_value(c["nmse_all"].clone()).unwrap();
+    let rfs: Vec<usize> = serde_json::from_value(c["n_rfs_all"].clone()).unwrap();
+    // The cross test's regression guard (as `lwpr/tests/cross.rs`).
+    assert!(
+        nmse.len() == 2 && nmse.iter().all(|&e| e < 0.06),
+        "{nmse:?}"
+    );
+    assert!(rfs.iter().all(|&n| (20..=45).contains(&n)), "{rfs:?}");
+    assert!(c["update_us"].as_f64().unwrap() > 0.0 && c["predict_us"].as_f64().unwrap() > 0.0);
+    let s = &v["sarcos7_invdyn"];
+    assert_eq!(
+        s["train"].as_u64().unwrap() + s["test"].as_u64().unwrap(),
+        400
+    );
+    assert_eq!(s["n_rfs_per_output"].as_array().unwrap().len(), 7);
+    let e: Vec<f64> = serde_json::from_value(s["nmse"].clone()).unwrap();
+    assert!(e.iter().all(|x| x.is_finite() && *x < 1.0), "{e:?}");
+}
+
+#[test]
+fn bench_lwpr_rejects_bad_arguments() {
+    for (args, says) in [
+        (&["bench", "lwpr", "--seeds", "0", "--json"][..], "--seeds"),
+        (&["bench", "lwpr", "--only", "cross3"], "cross3"),
+        (
+            &["bench", "lwpr", "--only", "sarcos7", "--traj", "0"],
+            "--traj",
+        ),
+    ] {
+        let (ok, out, err) = osrl(args);
+        assert!(!ok && out.is_empty(), "{args:?}: {out}");
+        assert!(err.contains(says), "{args:?}: {err}");
+    }
+}

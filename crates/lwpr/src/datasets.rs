@@ -1,0 +1,206 @@
+//! The reference library's accuracy benchmarks (`shared/LWPR.md`, issue 4), for tests,
+//! benchmarks and comparisons with other implementations: the 2-D "cross" function, its
+//! training set and test grid, the 21-D version embedded by a random rotation, their model
+//! configs, and a seeded train-and-test run that reports nMSE, RFs and µs per call.
+//!
+//! ```
+//! use lwpr::datasets::{cross_config, cross_run};
+//! // One seed of the standard test, with 2 epochs instead of 20.
+//! let r = cross_run(&cross_config(), 0, 2)?;
+//! assert!(r.nmse < 0.5 && r.n_rfs > 10);
+//! # Ok::<(), lwpr::LwprError>(())
+//! ```
+
+use crate::{Lwpr, LwprConfig, LwprError, MetricInit};
+use nalgebra::DMatrix;
+use rand::seq::SliceRandom;
+use rand::{RngExt, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use rand_distr::{Distribution, Normal};
+use std::time::Instant;
+
+/// `max(exp(−10 x₁²), exp(−50 x₂²), 1.25 exp(−5(x₁² + x₂²)))`.
+pub fn cross(x1: f64, x2: f64) -> f64 {
+    let a = (-10.0 * x1 * x1).exp();
+    let b = (-50.0 * x2 * x2).exp();
+    let c = 1.25 * (-5.0 * (x1 * x1 + x2 * x2)).exp();
+    a.max(b).max(c)
+}
+
+/// A data set: inputs and scalar targets.
+pub struct Data {
+    /// Inputs, one row per sample.
+    pub x: Vec<Vec<f64>>,
+    /// Targets.
+    pub y: Vec<f64>,
+}
+
+/// 500 points `x ~ U[−1,1]²`, targets with N(0, 0.1²) noise.
+pub fn cross_train(rng: &mut ChaCha8Rng, n: usize) -> Data {
+    let noise = Normal::new(0.0, 0.1).unwrap();
+    let mut d = Data {
+        x: vec![],
+        y: vec![],
+    };
+    for _ in 0..n {
+        let (a, b) = (rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0));
+        d.x.push(vec![a, b]);
+        d.y.push(cross(a, b) + noise.sample(rng));
+    }
+    d
+}
+
+/// The noiseless 41×41 grid on [−1, 1]².
+pub fn cross_grid() -> Data {
+    let mut d = Data {
+        x: vec![],
+        y: vec![],
+    };
+    for i in 0..41 {
+        for j in 0..41 {
+            let (a, b) = (-1.0 + 0.05 * i as f64, -1.0 + 0.05 * j as f64);
+            d.x.push(vec![a, b]);
+            d.y.push(cross(a, b));
+        }
+    }
+    d
+}
+
+/// A random `n × n` rotation (QR of a Gaussian matrix, signs fixed).
+pub fn rotation(rng: &mut ChaCha8Rng, n: usize) -> DMatrix<f64> {
+    let g = DMatrix::from_fn(n, n, |_, _| Normal::new(0.0, 1.0).unwrap().sample(rng));
+    let qr = g.qr();
+    let (mut q, r) = (qr.q(), qr.r());
+    for j in 0..n {
+        if r[(j, j)] < 0.0 {
+            q.column_mut(j).neg_mut();
+        }
+    }
+    q
+}
+
+/// Embeds 2-D points in `n` dimensions: `R · [x₁, x₂, 0, …]`.
+pub fn embed(d: &Data, rot: &DMatrix<f64>) -> Data {
+    let n = rot.nrows();
+    let x =
+        d.x.iter()
+            .map(|p| {
+                (0..n)
+                    .map(|i| rot[(i, 0)] * p[0] + rot[(i, 1)] * p[1])
+                    .collect()
+            })
+            .collect();
+    Data { x, y: d.y.clone() }
+}
+
+/// The cross test's model config: `init_D = 25·I`, `init_alpha` 250, `w_gen` 0.2, full metric,
+/// meta learning with rate 250, the rest default.
+pub fn cross_config() -> LwprConfig {
+    LwprConfig {
+        init_d: MetricInit::Scalar(25.0),
+        init_alpha: 250.0,
+        w_gen: 0.2,
+        diag_only: false,
+        meta: true,
+        meta_rate: 250.0,
+        ..Default::default()
+    }
+}
+
+/// The 21-D test's model config: `init_D = 0.25·I`, `init_alpha` 250, `w_gen` 0.2, full
+/// metric, meta learning with rate 250, `w_prune` 0.7, the reference C library's prune rule
+/// (see [`crate::PruneRule`]).
+pub fn cross21_config() -> LwprConfig {
+    LwprConfig {
+        init_d: MetricInit::Scalar(0.25),
+        init_alpha: 250.0,
+        w_gen: 0.2,
+        diag_only: false,
+        meta: true,
+        meta_rate: 250.0,
+        w_prune: 0.7,
+        ..Default::default()
+    }
+}
+
+/// Result of one run.
+#[derive(Debug, Clone, Copy)]
+pub struct RunResult {
+    /// Test MSE / variance of the test targets.
+    pub nmse: f64,
+    /// Receptive fields at the end of training.
+    pub n_rfs: usize,
+    /// Wall-clock µs per update, mean over all epochs.
+    pub update_us: f64,
+    /// Wall-clock µs per prediction, mean over the test set.
+    pub predict_us: f64,
+}
+
+/// Trains a one-output model on `train` for `epochs` epochs, each in a fresh order shuffled by
+/// a generator seeded with `seed`, then tests on `test`; a test point without an active RF
+/// predicts 0 (as the reference library would). Times are wall-clock means per call. Fails
+/// when the config is invalid for the data or a sample is not finite.
+pub fn run(
+    cfg: &LwprConfig,
+    train: &Data,
+    test: &Data,
+    epochs: usize,
+    seed: u64,
+) -> Result<RunResult, LwprError> {
+    let n_in = train.x[0].len();
+    let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x5eed);
+    let mut m = Lwpr::new(n_in, 1, cfg)?;
+    let mut order: Vec<usize> = (0..train.x.len()).collect();
+    let t0 = Instant::now();
+    for _ in 0..epochs {
+        order.shuffle(&mut rng);
+        for &i in &order {
+            m.update(&train.x[i], &[train.y[i]])?;
+        }
+    }
+    let update_us = t0.elapsed().as_secs_f64() * 1e6 / (epochs * train.x.len()) as f64;
+    let t1 = Instant::now();
+    let mut y = [0.0];
+    let mut se = 0.0;
+    for (x, &t) in test.x.iter().zip(&test.y) {
+        let p = match m.predict(x, &mut y) {
+            Ok(_) => y[0],
+            Err(_) => 0.0,
+        };
+        se += (p - t) * (p - t);
+    }
+    let predict_us = t1.elapsed().as_secs_f64() * 1e6 / test.x.len() as f64;
+    let n = test.y.len() as f64;
+    let mean = test.y.iter().sum::<f64>() / n;
+    let var = test.y.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / n;
+    Ok(RunResult {
+        nmse: se / n / var,
+        n_rfs: m.n_rfs_total(),
+        update_us,
+        predict_us,
+    })
+}
+
+/// The standard cross test with one seed: 500 training points, `epochs` epochs (20 in the
+/// standard test), `cfg` (normally [`cross_config`]).
+pub fn cross_run(cfg: &LwprConfig, seed: u64, epochs: usize) -> Result<RunResult, LwprError> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let train = cross_train(&mut rng, 500);
+    run(cfg, &train, &cross_grid(), epochs, seed)
+}
+
+/// The 21-D rotated cross with one seed: the 500 training points and the test grid embedded
+/// by one random rotation, `epochs` epochs (25 in the standard test), `cfg` (normally
+/// [`cross21_config`]).
+pub fn cross21_run(cfg: &LwprConfig, seed: u64, epochs: usize) -> Result<RunResult, LwprError> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let train = cross_train(&mut rng, 500);
+    let rot = rotation(&mut rng, 21);
+    run(
+        cfg,
+        &embed(&train, &rot),
+        &embed(&cross_grid(), &rot),
+        epochs,
+        seed,
+    )
+}
