@@ -65,23 +65,7 @@ fn hsum(v: V) -> f64 {
 /// `f64::exp`, tested).
 #[inline(always)]
 pub(crate) fn exp4(x: V) -> V {
-    const SHIFT: f64 = 6_755_399_441_055_744.0;
-    const LN2_HI: f64 = f64::from_bits(0x3fe6_2e42_fee0_0000);
-    const LN2_LO: f64 = f64::from_bits(0x3dea_39ef_3579_3c76);
-    const C: [f64; 12] = [
-        1.0 / 2.0,
-        1.0 / 6.0,
-        1.0 / 24.0,
-        1.0 / 120.0,
-        1.0 / 720.0,
-        1.0 / 5_040.0,
-        1.0 / 40_320.0,
-        1.0 / 362_880.0,
-        1.0 / 3_628_800.0,
-        1.0 / 39_916_800.0,
-        1.0 / 479_001_600.0,
-        1.0 / 6_227_020_800.0,
-    ];
+    use crate::simd::{EXP_C as C, EXP_SHIFT as SHIFT, LN2_HI, LN2_LO};
     // k = round(x / ln 2) (in t's low mantissa bits), r = x − k ln 2 (k·LN2_HI is exact).
     let t = fma(x, splat(std::f64::consts::LOG2_E), splat(SHIFT));
     let kf = sub(t, splat(SHIFT));

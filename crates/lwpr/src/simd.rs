@@ -31,6 +31,29 @@ pub(crate) fn max_abs(acc: f64, v: &[f64]) -> f64 {
     l[0].max(l[1]).max(l[2].max(l[3]))
 }
 
+/// 1.5·2^52: adding it rounds to an integer, which then sits in the low mantissa bits.
+pub(crate) const EXP_SHIFT: f64 = 6_755_399_441_055_744.0;
+/// `ln 2 = LN2_HI + LN2_LO` (fdlibm's split): `LN2_HI` has 32 significant bits, so `k·LN2_HI`
+/// is exact for `|k| < 2^21`.
+pub(crate) const LN2_HI: f64 = f64::from_bits(0x3fe6_2e42_fee0_0000);
+/// See [`LN2_HI`].
+pub(crate) const LN2_LO: f64 = f64::from_bits(0x3dea_39ef_3579_3c76);
+/// `1/i!` for `i = 2..=13`: `e^r = 1 + r + r²·Σ EXP_C[i−2]·r^{i−2}`.
+pub(crate) const EXP_C: [f64; 12] = [
+    1.0 / 2.0,
+    1.0 / 6.0,
+    1.0 / 24.0,
+    1.0 / 120.0,
+    1.0 / 720.0,
+    1.0 / 5_040.0,
+    1.0 / 40_320.0,
+    1.0 / 362_880.0,
+    1.0 / 3_628_800.0,
+    1.0 / 39_916_800.0,
+    1.0 / 479_001_600.0,
+    1.0 / 6_227_020_800.0,
+];
+
 /// `e^x` for finite `x` in `[-700, 700]`, branch-free so that loops over it vectorise:
 /// `x = k ln 2 + r` with `|r| ≤ ln 2 / 2` (Cody–Waite split of `ln 2`), `e^r` by its Taylor
 /// polynomial of degree 13 (truncation error < 1e-17 relative) evaluated by Estrin's scheme,
@@ -38,31 +61,13 @@ pub(crate) fn max_abs(acc: f64, v: &[f64]) -> f64 {
 /// (tested); `exp_fast(0) = 1` exactly.
 #[inline(always)]
 pub(crate) fn exp_fast(x: f64) -> f64 {
-    // 1.5·2^52: adding it rounds to an integer, which then sits in the low mantissa bits.
-    const SHIFT: f64 = 6_755_399_441_055_744.0;
-    // ln 2 = LN2_HI + LN2_LO (fdlibm's split): LN2_HI has 32 significant bits, so k·LN2_HI is
-    // exact for |k| < 2^21.
-    const LN2_HI: f64 = f64::from_bits(0x3fe6_2e42_fee0_0000);
-    const LN2_LO: f64 = f64::from_bits(0x3dea_39ef_3579_3c76);
+    const SHIFT: f64 = EXP_SHIFT;
+    const C: [f64; 12] = EXP_C;
     let t = x * std::f64::consts::LOG2_E + SHIFT;
     let kf = t - SHIFT;
     let r = (x - kf * LN2_HI) - kf * LN2_LO;
     // e^r = 1 + (r + r²·Σ_{i=2..13} r^{i−2} / i!), the sum by Estrin's scheme (a shallow
     // dependency tree, so that a scalar call has a short latency too).
-    const C: [f64; 12] = [
-        1.0 / 2.0,
-        1.0 / 6.0,
-        1.0 / 24.0,
-        1.0 / 120.0,
-        1.0 / 720.0,
-        1.0 / 5_040.0,
-        1.0 / 40_320.0,
-        1.0 / 362_880.0,
-        1.0 / 3_628_800.0,
-        1.0 / 39_916_800.0,
-        1.0 / 479_001_600.0,
-        1.0 / 6_227_020_800.0,
-    ];
     let r2 = r * r;
     let r4 = r2 * r2;
     let r8 = r4 * r4;

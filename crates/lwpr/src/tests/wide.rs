@@ -3,31 +3,28 @@
 //! maths with other roundings, so equal to a relative 1e-12; its AVX2+FMA and baseline copies
 //! bit-identical; its exponential within an ulp of `f64::exp`.
 
-use super::fused::{case, Case};
+use super::fused::case;
 use crate::metric_full::full_step;
 
 /// Runs the reference and the wide step on the same case; returns both results
 /// `[M, D, α, b, h]`.
 fn both(nk: usize, meta: bool, seed: u64) -> ([Vec<f64>; 5], [Vec<f64>; 5]) {
-    let Case {
-        p,
-        m,
-        d,
-        alpha,
-        b,
-        hm,
-        mut ws,
-        acc,
-        dwdq,
-        ddwdqdq,
-    } = case(nk, meta, seed);
-    let mut r = [m.clone(), d.clone(), alpha.clone(), b.clone(), hm.clone()];
-    let mut ws1 = ws.clone();
+    let c = case(nk, meta, seed);
+    let (p, acc, dwdq, ddwdqdq) = (&c.p, c.acc, c.dwdq, c.ddwdqdq);
+    let mut r = [
+        c.m.clone(),
+        c.d.clone(),
+        c.alpha.clone(),
+        c.b.clone(),
+        c.hm.clone(),
+    ];
+    let mut w = r.clone();
+    let mut ws1 = c.ws.clone();
     let [m1, d1, a1, b1, h1] = &mut r;
-    full_step(nk, &p, m1, d1, a1, b1, h1, acc, dwdq, ddwdqdq, &mut ws1);
-    let mut w = [m, d, alpha, b, hm];
+    full_step(nk, p, m1, d1, a1, b1, h1, acc, dwdq, ddwdqdq, &mut ws1);
+    let mut ws2 = c.ws.clone();
     let [m2, d2, a2, b2, h2] = &mut w;
-    crate::metric_wide::wide_step::<0>(nk, &p, m2, d2, a2, b2, h2, acc, dwdq, ddwdqdq, &mut ws);
+    crate::metric_wide::wide_step::<0>(nk, p, m2, d2, a2, b2, h2, acc, dwdq, ddwdqdq, &mut ws2);
     (r, w)
 }
 
@@ -80,32 +77,22 @@ fn wide_step_copies_give_the_same_bits() {
         for meta in [false, true] {
             let c = case(nk, meta, 7);
             let run = |avx: bool| {
-                let Case {
-                    p,
-                    mut m,
-                    mut d,
-                    mut alpha,
-                    mut b,
-                    mut hm,
-                    mut ws,
-                    acc,
-                    dwdq,
-                    ddwdqdq,
-                } = case(nk, meta, 7);
-                let (mm, dd, aa, bb, hh) = (&mut m, &mut d, &mut alpha, &mut b, &mut hm);
+                let mut c = case(nk, meta, 7);
+                let (p, acc, dwdq, ddwdqdq) = (&c.p, c.acc, c.dwdq, c.ddwdqdq);
+                let (m, d, a, b, h) = (&mut c.m, &mut c.d, &mut c.alpha, &mut c.b, &mut c.hm);
                 if avx {
                     // SAFETY: the CPU has AVX2 and FMA (checked above).
                     unsafe {
                         crate::metric_call::full_step_avx2::<0>(
-                            nk, &p, mm, dd, aa, bb, hh, acc, dwdq, ddwdqdq, &mut ws,
+                            nk, p, m, d, a, b, h, acc, dwdq, ddwdqdq, &mut c.ws,
                         )
                     }
                 } else {
                     crate::metric_call::full_step_base::<0>(
-                        nk, &p, mm, dd, aa, bb, hh, acc, dwdq, ddwdqdq, &mut ws,
+                        nk, p, m, d, a, b, h, acc, dwdq, ddwdqdq, &mut c.ws,
                     )
                 }
-                [m, d, alpha, b, hm]
+                [c.m, c.d, c.alpha, c.b, c.hm]
             };
             let (x, y) = (run(true), run(false));
             assert!(x[0] != c.m);
