@@ -54,6 +54,20 @@ fn bench_lwpr_rejects_bad_arguments() {
             &["bench", "lwpr", "--only", "sarcos7", "--traj", "0"],
             "--traj",
         ),
+        (&["bench", "lwpr", "--seconds", "inf"], "--seconds"),
+        (
+            &[
+                "bench",
+                "lwpr",
+                "--only",
+                "sarcos7",
+                "--traj",
+                "1",
+                "--seconds",
+                "0.1",
+            ],
+            "test samples",
+        ),
     ] {
         let (ok, out, err) = osrl(args);
         assert!(!ok && out.is_empty(), "{args:?}: {out}");

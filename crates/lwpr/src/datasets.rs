@@ -139,7 +139,8 @@ pub struct RunResult {
 /// Trains a one-output model on `train` for `epochs` epochs, each in a fresh order shuffled by
 /// a generator seeded with `seed`, then tests on `test`; a test point without an active RF
 /// predicts 0 (as the reference library would). Times are wall-clock means per call. Fails
-/// when the config is invalid for the data or a sample is not finite.
+/// when `epochs` is 0, a data set is empty, the config is invalid for the data or a sample is
+/// not finite.
 pub fn run(
     cfg: &LwprConfig,
     train: &Data,
@@ -147,6 +148,14 @@ pub fn run(
     epochs: usize,
     seed: u64,
 ) -> Result<RunResult, LwprError> {
+    if epochs == 0 || train.x.is_empty() || test.x.is_empty() {
+        return Err(LwprError::Config(format!(
+            "a benchmark run needs at least one epoch and samples to train and test on \
+             (epochs {epochs}, {} training and {} test samples)",
+            train.x.len(),
+            test.x.len()
+        )));
+    }
     let n_in = train.x[0].len();
     let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x5eed);
     let mut m = Lwpr::new(n_in, 1, cfg)?;

@@ -8,9 +8,9 @@
 //!   torques of the SARCOS master arm by RNEA, diagonal metric, one model per output.
 //!
 //! Times are wall-clock µs per call of the whole model (mean over a run). With `--repeat R`
-//! each run is repeated R times and the fastest repetition's times are kept: the repetitions
-//! compute the same numbers, so on a shared machine this is the speed without the other jobs'
-//! interruptions.
+//! each run is repeated R times and the smallest update and prediction times are kept (each
+//! its own minimum): the repetitions compute the same numbers, so on a shared machine this is
+//! the speed without the other jobs' interruptions.
 
 use anyhow::{Context, Result};
 use lwpr::datasets::{cross21_config, cross21_run, cross_config, cross_run, RunResult};
@@ -56,7 +56,7 @@ struct LwprArgs {
     /// Seeds of the cross tests (0..N); the report gives medians.
     #[arg(long, default_value_t = 10)]
     seeds: u64,
-    /// Runs per seed; the fastest one's times are kept (the results are identical).
+    /// Runs per seed; the smallest times are kept (the results are identical).
     #[arg(long, default_value_t = 1)]
     repeat: usize,
     /// Only these tests (comma-separated); all by default.
@@ -68,7 +68,8 @@ struct LwprArgs {
     /// Robot data: number of random trajectories.
     #[arg(long, default_value_t = 10)]
     traj: usize,
-    /// Robot data: seconds per trajectory (sampled at 100 Hz; a random 10 % is held out).
+    /// Robot data: seconds per trajectory, 0.1–3600 (sampled at 100 Hz; a random 10 % is held
+    /// out, at least 2 samples).
     #[arg(long, default_value_t = 5.0)]
     seconds: f64,
     /// Robot data: training epochs.
@@ -132,6 +133,13 @@ fn lwpr(a: LwprArgs) -> Result<()> {
     anyhow::ensure!(
         a.seeds > 0 && a.repeat > 0,
         "--seeds and --repeat must be at least 1"
+    );
+    anyhow::ensure!(
+        a.traj > 0 && (0.1..=3600.0).contains(&a.seconds) && a.epochs > 0,
+        "--traj and --epochs must be at least 1 and --seconds within 0.1–3600 (got {}, {}, {})",
+        a.traj,
+        a.epochs,
+        a.seconds
     );
     let want = |t: Test| a.only.is_empty() || a.only.contains(&t);
     let mut out = serde_json::Map::new();
@@ -238,10 +246,6 @@ fn std_dev(rows: &[Vec<f64>]) -> Vec<f64> {
 /// The robot inverse-dynamics benchmark (seed 0): diagonal metric, meta learning, inputs and
 /// outputs normalised by the training data's standard deviation.
 fn sarcos7(a: &LwprArgs) -> Result<Value> {
-    anyhow::ensure!(
-        a.traj > 0 && a.seconds >= 0.1 && a.epochs > 0,
-        "--traj, --seconds (≥ 0.1) and --epochs must be positive"
-    );
     let mut rng = ChaCha8Rng::seed_from_u64(0);
     let (mut xs, mut ys) = (vec![], vec![]);
     for _ in 0..a.traj {
@@ -249,7 +253,12 @@ fn sarcos7(a: &LwprArgs) -> Result<Value> {
     }
     let mut idx: Vec<usize> = (0..xs.len()).collect();
     idx.shuffle(&mut rng);
-    let n_test = (xs.len() / 10).max(1);
+    let n_test = xs.len() / 10;
+    anyhow::ensure!(
+        n_test >= 2,
+        "robot data: {} samples give {n_test} test samples; more --traj or --seconds",
+        xs.len()
+    );
     let pick = |ii: &[usize], v: &[Vec<f64>]| ii.iter().map(|&i| v[i].clone()).collect::<Vec<_>>();
     let (xte, yte) = (pick(&idx[..n_test], &xs), pick(&idx[..n_test], &ys));
     let (xtr, ytr) = (pick(&idx[n_test..], &xs), pick(&idx[n_test..], &ys));
