@@ -56,3 +56,21 @@ pub fn rows<R: nalgebra::Dim, C: nalgebra::Dim, S: nalgebra::RawStorage<f64, R, 
         .map(|i| (0..m.ncols()).map(|j| m[(i, j)]).collect())
         .collect()
 }
+
+/// Population standard deviation of column `col` of `rows` (NaN without rows).
+pub fn std_dev(rows: &[Vec<f64>], col: usize) -> f64 {
+    let n = rows.len() as f64;
+    let mean = rows.iter().map(|r| r[col]).sum::<f64>() / n;
+    (rows.iter().map(|r| (r[col] - mean).powi(2)).sum::<f64>() / n).sqrt()
+}
+
+/// Median (mean of the middle two for an even count; NaN when empty).
+pub fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(|a, b| a.total_cmp(b));
+    let n = v.len();
+    match n {
+        0 => f64::NAN,
+        _ if n % 2 == 1 => v[n / 2],
+        _ => 0.5 * (v[n / 2 - 1] + v[n / 2]),
+    }
+}

@@ -25,11 +25,9 @@ pub(crate) struct MetricScratch {
     pub ddw: Vec<f64>,
     /// `∂²J2/∂M²` (element-wise).
     pub ddj2: Vec<f64>,
-    /// Padded copies (`nk` rows of stride `nkp`, a multiple of 4) for the cubic-cost products.
-    pub pad_a: Vec<f64>,
-    /// Second padded buffer.
-    pub pad_b: Vec<f64>,
-    /// One padded row.
+    /// The diagonal of `D` (full metrics).
+    pub ddiag: Vec<f64>,
+    /// One row (`nk`).
     pub row: Vec<f64>,
     /// Scratch of the full-metric step above 4 dimensions
     /// ([`super::metric_wide::wide_step`]).
@@ -39,12 +37,6 @@ pub(crate) struct MetricScratch {
 impl MetricScratch {
     /// Buffers for `nk` kernel dimensions and `mlen` metric elements.
     pub fn new(nk: usize, mlen: usize) -> MetricScratch {
-        // Only a full metric (`mlen = nk²`) uses the padded buffers.
-        let pad = if mlen == nk * nk {
-            nk * super::metric_full::padded(nk)
-        } else {
-            0
-        };
         MetricScratch {
             dx: vec![0.0; nk],
             mdx: vec![0.0; nk],
@@ -52,9 +44,8 @@ impl MetricScratch {
             dj2: vec![0.0; mlen],
             ddw: vec![0.0; mlen],
             ddj2: vec![0.0; mlen],
-            pad_a: vec![0.0; pad],
-            pad_b: vec![0.0; pad],
-            row: vec![0.0; super::metric_full::padded(nk)],
+            ddiag: vec![0.0; nk],
+            row: vec![0.0; nk],
             wide: if mlen == nk * nk && nk > 4 {
                 vec![0.0; super::metric_wide::wide_len(nk)]
             } else {
@@ -109,21 +100,17 @@ pub(crate) fn derivatives(
         ws.mdx[n] = dot(mrow, &dx[n..]);
     }
     // ∂J2/∂M_nm = 4 pen Σ_{i≥n} M_ni D_im (m ≥ n): row n of M·D, accumulated over the rows i
-    // of D (the same terms in the same order as a dot product). The rows are padded and
-    // processed from the multiple of 4 at or below n, so every vector operation is whole; the
-    // extra entries (m < n) are not used.
-    use super::metric_full::{pad_rows, padded, set_rows};
-    let nkp = padded(nk);
-    pad_rows(nk, d, &mut ws.pad_a);
+    // of D (the same terms in the same order as a dot product).
     let pen4 = 4.0 * pen;
     for n in 0..nk {
-        let a0 = n & !3;
-        set_rows(
-            &mut ws.row[a0..nkp],
-            &m[n * nk + n..(n + 1) * nk],
-            &ws.pad_a[n * nkp + a0..],
-            nkp,
-        );
+        let row = &mut ws.row[n..nk];
+        row.iter_mut().for_each(|v| *v = 0.0);
+        for i in n..nk {
+            let a = m[n * nk + i];
+            for (o, &dv) in row.iter_mut().zip(&d[i * nk + n..(i + 1) * nk]) {
+                *o += a * dv;
+            }
+        }
         let dst = &mut ws.dj2[n * nk + n..(n + 1) * nk];
         for (o, &v) in dst.iter_mut().zip(&ws.row[n..nk]) {
             *o = v * pen4;
@@ -299,7 +286,7 @@ pub(crate) fn step(
             &mut hm[r],
         );
     }
-    super::metric_full::mtm(nk, m, d, &mut ws.pad_a, &mut ws.pad_b, &mut ws.row);
+    super::metric_full::mtm(nk, m, d);
 }
 
 /// Coefficients of one metric step: the output-averaged `T·w/W`, `T·∂J1/∂w`, `T·∂²J1/∂w²`,

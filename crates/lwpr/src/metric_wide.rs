@@ -22,7 +22,6 @@
 //! the price of the same bits on every CPU.
 
 use crate::metric::{MetricAcc, MetricScratch};
-use crate::metric_full::padded;
 use crate::params::Params;
 
 /// Four lanes.
@@ -76,7 +75,8 @@ pub(crate) fn exp4(x: V) -> V {
     let kf = sub(t, splat(SHIFT));
     let r = fma(kf, splat(-LN2_LO), fma(kf, splat(-LN2_HI), x));
     let (r2, c) = (mul(r, r), |i: usize| splat(C[i]));
-    let (r4, r8) = (mul(r2, r2), mul(mul(r2, r2), mul(r2, r2)));
+    let r4 = mul(r2, r2);
+    let r8 = mul(r4, r4);
     let (t0, t1, t2) = (fma(c(1), r, c(0)), fma(c(3), r, c(2)), fma(c(5), r, c(4)));
     let (t3, t4, t5) = (fma(c(7), r, c(6)), fma(c(9), r, c(8)), fma(c(11), r, c(10)));
     let (u0, u1, u2) = (fma(t1, r2, t0), fma(t3, r2, t2), fma(t5, r2, t4));
@@ -145,6 +145,12 @@ fn row_vectors<'a>(a: &'a [f64], nk: usize, q: usize, r: usize, last: &'a [V]) -
     }
 }
 
+/// `nk` rounded up to a multiple of 4.
+#[inline(always)]
+fn padded(nk: usize) -> usize {
+    (nk + 3) & !3
+}
+
 /// The row stride of the scratch blocks of [`wide_step`]: a vector more than the padded row,
 /// so that a vector starting at any column of a row stays in it.
 fn stride(nk: usize) -> usize {
@@ -206,16 +212,7 @@ pub(crate) fn wide_step<const NK: usize>(
     d_last[..nk].copy_from_slice(&d[nn - nk..]);
 
     // max |M| (exact in any order; the lower triangle is zero).
-    let mut mx = splat(0.0);
-    let (m4, m_rest) = m.as_chunks::<4>();
-    for v in m4 {
-        mx = map2(mx, *v, |a, x| a.max(x.abs()));
-    }
-    let max_m = m_rest
-        .iter()
-        .fold(mx[0].max(mx[1]).max(mx[2].max(mx[3])), |a, x| {
-            a.max(x.abs())
-        });
+    let max_m = crate::simd::max_abs(0.0, m);
 
     // Row n of M·D (the penalty gradient, from the unchanged M and D) into the first block,
     // in column blocks of up to 8 vectors held in registers.

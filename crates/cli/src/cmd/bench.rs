@@ -12,6 +12,7 @@
 //! its own minimum): the repetitions compute the same numbers, so on a shared machine this is
 //! the speed without the other jobs' interruptions.
 
+use crate::util;
 use anyhow::{Context, Result};
 use lwpr::datasets::{cross21_config, cross21_run, cross_config, cross_run, RunResult};
 use lwpr::{Lwpr, LwprConfig, MetricInit, Norm, NormKeyword, PruneRule};
@@ -90,17 +91,7 @@ pub fn run(a: Args) -> Result<()> {
     }
 }
 
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    let n = v.len();
-    if n % 2 == 1 {
-        v[n / 2]
-    } else {
-        0.5 * (v[n / 2 - 1] + v[n / 2])
-    }
-}
-
-/// `f` for seeds 0..n, each repeated `repeat` times (fastest times kept); medians and per-seed
+/// `f` for seeds 0..n, each repeated `repeat` times (smallest times kept); medians and per-seed
 /// values.
 fn cross(
     n: u64,
@@ -117,7 +108,7 @@ fn cross(
         }
         runs.push(best);
     }
-    let col = |g: fn(&RunResult) -> f64| median(runs.iter().map(g).collect());
+    let col = |g: fn(&RunResult) -> f64| util::median(runs.iter().map(g).collect());
     Ok(json!({
         "seeds": n,
         "nmse": col(|r| r.nmse),
@@ -180,7 +171,7 @@ fn lwpr(a: LwprArgs) -> Result<()> {
         }
         say("sarcos7_invdyn", best);
     }
-    crate::util::print_json(&Value::Object(out));
+    util::print_json(&Value::Object(out));
     Ok(())
 }
 
@@ -233,14 +224,9 @@ fn trajectory(
     Ok(())
 }
 
-fn std_dev(rows: &[Vec<f64>]) -> Vec<f64> {
-    let (n, d) = (rows.len() as f64, rows[0].len());
-    (0..d)
-        .map(|j| {
-            let m = rows.iter().map(|r| r[j]).sum::<f64>() / n;
-            (rows.iter().map(|r| (r[j] - m).powi(2)).sum::<f64>() / n).sqrt()
-        })
-        .collect()
+/// Standard deviation of every column.
+fn std_devs(rows: &[Vec<f64>]) -> Vec<f64> {
+    (0..rows[0].len()).map(|c| util::std_dev(rows, c)).collect()
 }
 
 /// The robot inverse-dynamics benchmark (seed 0): diagonal metric, meta learning, inputs and
@@ -272,7 +258,7 @@ fn sarcos7(a: &LwprArgs) -> Result<Value> {
         norm_out: Norm::Keyword(NormKeyword::Std),
         ..Default::default()
     };
-    cfg.resolve_std(&std_dev(&xtr), &std_dev(&ytr));
+    cfg.resolve_std(&std_devs(&xtr), &std_devs(&ytr));
     let mut m = Lwpr::new(21, 7, &cfg)?;
     let mut order: Vec<usize> = (0..xtr.len()).collect();
     let t0 = Instant::now();
@@ -292,7 +278,7 @@ fn sarcos7(a: &LwprArgs) -> Result<Value> {
         }
     }
     let predict_us = t1.elapsed().as_secs_f64() * 1e6 / xte.len() as f64;
-    let sd = std_dev(&yte);
+    let sd = std_devs(&yte);
     let nmse: Vec<f64> = (0..7)
         .map(|o| se[o] / xte.len() as f64 / (sd[o] * sd[o]))
         .collect();

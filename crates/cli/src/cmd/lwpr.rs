@@ -5,6 +5,7 @@
 //! unknown keys are an error. `norm_in`/`norm_out` may be `"std"`: the training data's
 //! standard deviation per column.
 
+use crate::util;
 use anyhow::{bail, Context, Result};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use lwpr::{Lwpr, LwprConfig};
@@ -100,22 +101,6 @@ fn read_csv(path: &Path) -> Result<(Vec<String>, Vec<Vec<f64>>)> {
     Ok((names, rows))
 }
 
-fn std_dev(rows: &[Vec<f64>], col: usize) -> f64 {
-    let n = rows.len() as f64;
-    let mean = rows.iter().map(|r| r[col]).sum::<f64>() / n;
-    (rows.iter().map(|r| (r[col] - mean).powi(2)).sum::<f64>() / n).sqrt()
-}
-
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(|a, b| a.total_cmp(b));
-    let n = v.len();
-    match n {
-        0 => f64::NAN,
-        _ if n % 2 == 1 => v[n / 2],
-        _ => 0.5 * (v[n / 2 - 1] + v[n / 2]),
-    }
-}
-
 fn fit(a: FitArgs) -> Result<()> {
     let (names, train) = read_csv(&a.train)?;
     let (test_names, test) = read_csv(&a.test)?;
@@ -141,8 +126,8 @@ fn fit(a: FitArgs) -> Result<()> {
         }
         None => LwprConfig::default(),
     };
-    let std_in: Vec<f64> = (0..k).map(|c| std_dev(&train, c)).collect();
-    let std_out: Vec<f64> = (k..cols).map(|c| std_dev(&train, c)).collect();
+    let std_in: Vec<f64> = (0..k).map(|c| util::std_dev(&train, c)).collect();
+    let std_out: Vec<f64> = (k..cols).map(|c| util::std_dev(&train, c)).collect();
     cfg.resolve_std(&std_in, &std_out);
     let mut model = Lwpr::new(k, n_out, &cfg)?;
 
@@ -188,7 +173,7 @@ fn fit(a: FitArgs) -> Result<()> {
     }
     let nt = test.len() as f64;
     let nmse: Vec<f64> = (0..n_out)
-        .map(|o| (sq[o] / nt) / std_dev(&test, k + o).powi(2))
+        .map(|o| (sq[o] / nt) / util::std_dev(&test, k + o).powi(2))
         .collect();
     if let Some(p) = &a.save {
         model
@@ -198,8 +183,8 @@ fn fit(a: FitArgs) -> Result<()> {
     let out = serde_json::json!({
         "nmse": nmse,
         "n_rfs": model.n_rfs(),
-        "update_us": median(update_ns) / 1e3,
-        "predict_us": median(predict_ns) / 1e3,
+        "update_us": util::median(update_ns) / 1e3,
+        "predict_us": util::median(predict_ns) / 1e3,
         "train_seconds": train_seconds,
         "outputs": &names[k..],
         "unsupported": unsupported,

@@ -45,7 +45,7 @@ pub(super) fn case(nk: usize, meta: bool, seed: u64) -> Case {
     }
     let mut d = vec![0.0; nk * nk];
     let mut ws = MetricScratch::new(nk, nk * nk);
-    crate::metric_full::mtm(nk, &m, &mut d, &mut ws.pad_a, &mut ws.pad_b, &mut ws.row);
+    crate::metric_full::mtm(nk, &m, &mut d);
     let alpha: Vec<f64> = (0..nk * nk).map(|_| rng.random_range(1.0..300.0)).collect();
     let b: Vec<f64> = alpha.iter().map(|a: &f64| a.ln()).collect();
     let hm: Vec<f64> = (0..nk * nk)
