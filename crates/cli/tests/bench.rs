@@ -46,10 +46,35 @@ fn bench_lwpr_reports_the_selected_tests() {
 }
 
 #[test]
+fn bench_lwpr_first_seed_selects_the_seeds() {
+    // Seeds 0..3 at once, and seed 2 alone: the same numbers for seed 2.
+    let run = |extra: &[&str]| {
+        let mut args = vec!["bench", "lwpr", "--only", "cross2", "--json"];
+        args.extend_from_slice(extra);
+        let (ok, out, err) = osrl(&args);
+        assert!(ok, "{err}");
+        last_json(&out)["cross_2d"].clone()
+    };
+    let all = run(&["--seeds", "3"]);
+    let one = run(&["--seeds", "1", "--first-seed", "2"]);
+    assert_eq!(
+        (&all["first_seed"], &one["first_seed"]),
+        (&0.into(), &2.into())
+    );
+    assert_eq!(one["nmse_all"][0], all["nmse_all"][2]);
+    assert_eq!(one["n_rfs_all"][0], all["n_rfs_all"][2]);
+    assert_ne!(all["nmse_all"][0], all["nmse_all"][2], "the seeds differ");
+}
+
+#[test]
 fn bench_lwpr_rejects_bad_arguments() {
     for (args, says) in [
         (&["bench", "lwpr", "--seeds", "0", "--json"][..], "--seeds"),
         (&["bench", "lwpr", "--only", "cross3"], "cross3"),
+        (
+            &["bench", "lwpr", "--first-seed", "18446744073709551615"],
+            "--first-seed",
+        ),
         (
             &["bench", "lwpr", "--only", "sarcos7", "--traj", "0"],
             "--traj",

@@ -1,7 +1,7 @@
 //! `osrl bench lwpr`: the LWPR benchmarks of issue 4, as one JSON object.
 //!
 //! - `cross_2d`: the reference library's cross test (`shared/LWPR.md`): 500 noisy points, 20
-//!   epochs, tested on the 41×41 grid, over `--seeds` seeds;
+//!   epochs, tested on the 41×41 grid, over `--seeds` seeds from `--first-seed` on;
 //! - `cross_21d`: the same points embedded in 21-D by a random rotation, 25 epochs, full metric
 //!   with meta learning;
 //! - `sarcos7_invdyn`: robot inverse dynamics, inputs `[q, q̇, q̈]` (21-D), outputs the 7 joint
@@ -54,9 +54,13 @@ enum Prune {
 
 #[derive(clap::Args)]
 struct LwprArgs {
-    /// Seeds of the cross tests (0..N); the report gives medians.
+    /// Number of seeds of the cross tests (S..S+N with S = --first-seed); the report gives
+    /// medians.
     #[arg(long, default_value_t = 10)]
     seeds: u64,
+    /// First seed of the cross tests.
+    #[arg(long, default_value_t = 0)]
+    first_seed: u64,
     /// Runs per seed; the smallest times are kept (the results are identical).
     #[arg(long, default_value_t = 1)]
     repeat: usize,
@@ -91,15 +95,16 @@ pub fn run(a: Args) -> Result<()> {
     }
 }
 
-/// `f` for seeds 0..n, each repeated `repeat` times (smallest times kept); medians and per-seed
-/// values.
+/// `f` for seeds s0..s0+n, each repeated `repeat` times (smallest times kept); medians and
+/// per-seed values.
 fn cross(
+    s0: u64,
     n: u64,
     repeat: usize,
     f: impl Fn(u64) -> Result<RunResult, lwpr::LwprError>,
 ) -> Result<Value> {
     let mut runs = Vec::new();
-    for seed in 0..n {
+    for seed in s0..s0 + n {
         let mut best = f(seed)?;
         for _ in 1..repeat {
             let r = f(seed)?;
@@ -111,6 +116,7 @@ fn cross(
     let col = |g: fn(&RunResult) -> f64| util::median(runs.iter().map(g).collect());
     Ok(json!({
         "seeds": n,
+        "first_seed": s0,
         "nmse": col(|r| r.nmse),
         "n_rfs": col(|r| r.n_rfs as f64),
         "update_us": col(|r| r.update_us),
@@ -124,6 +130,12 @@ fn lwpr(a: LwprArgs) -> Result<()> {
     anyhow::ensure!(
         a.seeds > 0 && a.repeat > 0,
         "--seeds and --repeat must be at least 1"
+    );
+    anyhow::ensure!(
+        a.first_seed.checked_add(a.seeds).is_some(),
+        "--first-seed + --seeds must fit in 64 bits (got {} + {})",
+        a.first_seed,
+        a.seeds
     );
     anyhow::ensure!(
         a.traj > 0 && (0.1..=3600.0).contains(&a.seconds) && a.epochs > 0,
@@ -144,7 +156,7 @@ fn lwpr(a: LwprArgs) -> Result<()> {
         let cfg = cross_config();
         say(
             "cross_2d",
-            cross(a.seeds, a.repeat, |s| cross_run(&cfg, s, 20))?,
+            cross(a.first_seed, a.seeds, a.repeat, |s| cross_run(&cfg, s, 20))?,
         );
     }
     if want(Test::Cross21) {
@@ -158,7 +170,9 @@ fn lwpr(a: LwprArgs) -> Result<()> {
         };
         say(
             "cross_21d",
-            cross(a.seeds, a.repeat, |s| cross21_run(&cfg, s, 25))?,
+            cross(a.first_seed, a.seeds, a.repeat, |s| {
+                cross21_run(&cfg, s, 25)
+            })?,
         );
     }
     if want(Test::Sarcos7) {
