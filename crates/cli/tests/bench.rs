@@ -64,6 +64,11 @@ fn bench_lwpr_first_seed_selects_the_seeds() {
     assert_eq!(one["nmse_all"][0], all["nmse_all"][2]);
     assert_eq!(one["n_rfs_all"][0], all["n_rfs_all"][2]);
     assert_ne!(all["nmse_all"][0], all["nmse_all"][2], "the seeds differ");
+    assert_eq!(all["epochs"], 20);
+    // Fewer epochs: another fit, and the count is reported.
+    let short = run(&["--seeds", "1", "--first-seed", "2", "--cross2-epochs", "2"]);
+    assert_eq!(short["epochs"], 2);
+    assert_ne!(short["nmse_all"][0], one["nmse_all"][0]);
 }
 
 #[test]
@@ -71,6 +76,10 @@ fn bench_lwpr_rejects_bad_arguments() {
     for (args, says) in [
         (&["bench", "lwpr", "--seeds", "0", "--json"][..], "--seeds"),
         (&["bench", "lwpr", "--only", "cross3"], "cross3"),
+        (
+            &["bench", "lwpr", "--cross21-epochs", "0"],
+            "--cross21-epochs",
+        ),
         (
             &["bench", "lwpr", "--first-seed", "18446744073709551615"],
             "--first-seed",

@@ -1,9 +1,10 @@
 //! `osrl bench lwpr`: the LWPR benchmarks of issue 4, as one JSON object.
 //!
 //! - `cross_2d`: the reference library's cross test (`shared/LWPR.md`): 500 noisy points, 20
-//!   epochs, tested on the 41×41 grid, over `--seeds` seeds from `--first-seed` on;
-//! - `cross_21d`: the same points embedded in 21-D by a random rotation, 25 epochs, full metric
-//!   with meta learning;
+//!   epochs (`--cross2-epochs`), tested on the 41×41 grid, over `--seeds` seeds from
+//!   `--first-seed` on;
+//! - `cross_21d`: the same points embedded in 21-D by a random rotation, 25 epochs
+//!   (`--cross21-epochs`), full metric with meta learning;
 //! - `sarcos7_invdyn`: robot inverse dynamics, inputs `[q, q̇, q̈]` (21-D), outputs the 7 joint
 //!   torques of the SARCOS master arm by RNEA, diagonal metric, one model per output.
 //!
@@ -61,6 +62,12 @@ struct LwprArgs {
     /// First seed of the cross tests.
     #[arg(long, default_value_t = 0)]
     first_seed: u64,
+    /// Training epochs of the 2-D cross test (the reference library's test: 20).
+    #[arg(long, default_value_t = 20)]
+    cross2_epochs: usize,
+    /// Training epochs of the 21-D cross test (issue 4: 25).
+    #[arg(long, default_value_t = 25)]
+    cross21_epochs: usize,
     /// Runs per seed; the smallest times are kept (the results are identical).
     #[arg(long, default_value_t = 1)]
     repeat: usize,
@@ -96,10 +103,11 @@ pub fn run(a: Args) -> Result<()> {
 }
 
 /// `f` for seeds s0..s0+n, each repeated `repeat` times (smallest times kept); medians and
-/// per-seed values.
+/// per-seed values (`epochs` is reported).
 fn cross(
     s0: u64,
     n: u64,
+    epochs: usize,
     repeat: usize,
     f: impl Fn(u64) -> Result<RunResult, lwpr::LwprError>,
 ) -> Result<Value> {
@@ -117,6 +125,7 @@ fn cross(
     Ok(json!({
         "seeds": n,
         "first_seed": s0,
+        "epochs": epochs,
         "nmse": col(|r| r.nmse),
         "n_rfs": col(|r| r.n_rfs as f64),
         "update_us": col(|r| r.update_us),
@@ -138,6 +147,10 @@ fn lwpr(a: LwprArgs) -> Result<()> {
         a.seeds
     );
     anyhow::ensure!(
+        a.cross2_epochs > 0 && a.cross21_epochs > 0,
+        "--cross2-epochs and --cross21-epochs must be at least 1"
+    );
+    anyhow::ensure!(
         a.traj > 0 && (0.1..=3600.0).contains(&a.seconds) && a.epochs > 0,
         "--traj and --epochs must be at least 1 and --seconds within 0.1–3600 (got {}, {}, {})",
         a.traj,
@@ -153,10 +166,12 @@ fn lwpr(a: LwprArgs) -> Result<()> {
         out.insert(name.into(), v);
     };
     if want(Test::Cross2) {
-        let cfg = cross_config();
+        let (cfg, e) = (cross_config(), a.cross2_epochs);
         say(
             "cross_2d",
-            cross(a.first_seed, a.seeds, a.repeat, |s| cross_run(&cfg, s, 20))?,
+            cross(a.first_seed, a.seeds, e, a.repeat, |s| {
+                cross_run(&cfg, s, e)
+            })?,
         );
     }
     if want(Test::Cross21) {
@@ -168,10 +183,11 @@ fn lwpr(a: LwprArgs) -> Result<()> {
             prune_rule,
             ..cross21_config()
         };
+        let e = a.cross21_epochs;
         say(
             "cross_21d",
-            cross(a.first_seed, a.seeds, a.repeat, |s| {
-                cross21_run(&cfg, s, 25)
+            cross(a.first_seed, a.seeds, e, a.repeat, |s| {
+                cross21_run(&cfg, s, e)
             })?,
         );
     }
