@@ -69,6 +69,40 @@ fn bench_lwpr_first_seed_selects_the_seeds() {
     let short = run(&["--seeds", "1", "--first-seed", "2", "--cross2-epochs", "2"]);
     assert_eq!(short["epochs"], 2);
     assert_ne!(short["nmse_all"][0], one["nmse_all"][0]);
+    // The last seed there is.
+    let last = run(&["--seeds", "1", "--first-seed", "18446744073709551615"]);
+    assert_eq!(last["first_seed"], u64::MAX);
+    assert!(last["nmse"].as_f64().unwrap().is_finite());
+}
+
+#[test]
+fn bench_lwpr_cross21_takes_its_seeds_and_epochs() {
+    let args = [
+        "bench",
+        "lwpr",
+        "--only",
+        "cross21",
+        "--seeds",
+        "2",
+        "--first-seed",
+        "3",
+        "--cross21-epochs",
+        "1",
+        "--json",
+    ];
+    let (ok, out, err) = osrl(&args);
+    assert!(ok, "{err}");
+    let c = &last_json(&out)["cross_21d"];
+    assert_eq!(
+        (&c["first_seed"], &c["epochs"], &c["seeds"]),
+        (&3.into(), &1.into(), &2.into())
+    );
+    let nmse: Vec<f64> = serde_json::from_value(c["nmse_all"].clone()).unwrap();
+    assert!(
+        nmse.len() == 2 && nmse.iter().all(|e| e.is_finite() && *e > 0.0),
+        "{nmse:?}"
+    );
+    assert_ne!(nmse[0], nmse[1], "two seeds, two data sets");
 }
 
 #[test]
@@ -77,11 +111,29 @@ fn bench_lwpr_rejects_bad_arguments() {
         (&["bench", "lwpr", "--seeds", "0", "--json"][..], "--seeds"),
         (&["bench", "lwpr", "--only", "cross3"], "cross3"),
         (
-            &["bench", "lwpr", "--cross21-epochs", "0"],
+            &[
+                "bench",
+                "lwpr",
+                "--only",
+                "cross21",
+                "--cross21-epochs",
+                "0",
+            ],
             "--cross21-epochs",
         ),
         (
-            &["bench", "lwpr", "--first-seed", "18446744073709551615"],
+            &["bench", "lwpr", "--only", "cross2", "--cross2-epochs", "0"],
+            "--cross2-epochs",
+        ),
+        (
+            &[
+                "bench",
+                "lwpr",
+                "--only",
+                "cross2",
+                "--first-seed",
+                "18446744073709551615",
+            ],
             "--first-seed",
         ),
         (

@@ -112,7 +112,8 @@ fn cross(
     f: impl Fn(u64) -> Result<RunResult, lwpr::LwprError>,
 ) -> Result<Value> {
     let mut runs = Vec::new();
-    for seed in s0..s0 + n {
+    // n ≥ 1 and s0 + (n − 1) fits (checked by the caller).
+    for seed in s0..=s0 + (n - 1) {
         let mut best = f(seed)?;
         for _ in 1..repeat {
             let r = f(seed)?;
@@ -141,8 +142,8 @@ fn lwpr(a: LwprArgs) -> Result<()> {
         "--seeds and --repeat must be at least 1"
     );
     anyhow::ensure!(
-        a.first_seed.checked_add(a.seeds).is_some(),
-        "--first-seed + --seeds must fit in 64 bits (got {} + {})",
+        a.first_seed.checked_add(a.seeds - 1).is_some(),
+        "the last seed, --first-seed + --seeds - 1, must fit in 64 bits (got {} + {} - 1)",
         a.first_seed,
         a.seeds
     );
