@@ -148,7 +148,7 @@ pub(crate) fn derivatives(
 /// `n_data[0]·(1 − λ[0]) ≤ 0.1`.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-pub(crate) fn output_terms(
+pub(crate) fn output_terms<const R: usize>(
     pls: &mut Pls,
     nr: usize,
     w: f64,
@@ -159,7 +159,7 @@ pub(crate) fn output_terms(
     meta: bool,
     acc: &mut MetricAcc,
 ) {
-    let r = pls.n_reg;
+    let r = if R > 0 { R } else { pls.n_reg };
     let (n_data, ss_s2, lambda) = (&pls.n_data[..r], &pls.ss_s2[..r], &pls.lambda[..r]);
     let (h_tr, r_tr) = (&mut pls.h_tr[..r], &mut pls.r_tr[..r]);
     let (s, ps) = (&s[..r], &mut ps[..r]);

@@ -98,7 +98,7 @@ pub(crate) struct RegOut {
 /// weighted PLS update with sample `(x̃, y)` and weight `w`. `ws.s` holds the new projections.
 /// (The PLS state is sliced to its `R` directions once, so the loops need no bounds checks.)
 #[inline(always)]
-pub(crate) fn update_regression(
+pub(crate) fn update_regression<const R: usize>(
     pls: &mut Pls,
     nr: usize,
     omega: f64,
@@ -108,7 +108,7 @@ pub(crate) fn update_regression(
 ) -> RegOut {
     pls.beta0 = (omega * pls.beta0 + w * y) / (omega + w);
     let ymz = y - pls.beta0;
-    let r = pls.n_reg;
+    let r = if R > 0 { R } else { pls.n_reg };
     let nn = r * nr;
     let PlsScratch {
         xmz,
@@ -220,8 +220,8 @@ pub(crate) fn update_regression(
 
 /// Step (f): `n_data_j ← λ_j n_data_j + 1`, then the forgetting schedule.
 #[inline(always)]
-pub(crate) fn forget(pls: &mut Pls, tau: f64, final_lambda: f64) {
-    for j in 0..pls.n_reg {
+pub(crate) fn forget<const R: usize>(pls: &mut Pls, tau: f64, final_lambda: f64) {
+    for j in 0..if R > 0 { R } else { pls.n_reg } {
         pls.n_data[j] = pls.n_data[j] * pls.lambda[j] + 1.0;
         pls.lambda[j] = tau * pls.lambda[j] + final_lambda * (1.0 - tau);
     }

@@ -38,18 +38,16 @@ pub(crate) fn update_rf<const NK: usize, const NR: usize, const AVX: bool>(
     }
     let mut acc = MetricAcc::default();
     for (o, out) in rf.outs.iter_mut().enumerate() {
-        let r = pls::update_regression(out, nr, omega, y[o], w, &mut ws.pls);
+        // Two directions (the usual count at small dimensions) as a constant, so that the
+        // loops over them unroll (the arithmetic is the same).
+        let yp = if NR > 0 && out.n_reg == 2 && !force_dynamic() {
+            output_step::<2>(p, out, nr, omega, y[o], w, &mut acc, &mut ws.pls)
+        } else {
+            output_step::<0>(p, out, nr, omega, y[o], w, &mut acc, &mut ws.pls)
+        };
         if rf.trustworthy {
-            ws.yacc[o] += w * r.yp;
+            ws.yacc[o] += w * yp;
         }
-        if p.cfg.update_d {
-            let (sv, ps) = (&ws.pls.s, &mut ws.pls.ps);
-            metric::output_terms(out, nr, w, sv, ps, r.e_cv, r.e, p.cfg.meta, &mut acc);
-        }
-        out.check_grow(p);
-        pls::forget(out, p.cfg.tau_lambda, p.cfg.final_lambda);
-        // The slope is recomputed when a prediction needs it (`Pls::refresh_slope`).
-        out.slope_stale = true;
     }
     let trusted = rf.trustworthy;
     if acc.n == 0 {
@@ -82,4 +80,44 @@ pub(crate) fn update_rf<const NK: usize, const NR: usize, const AVX: bool>(
     metric::derivatives(nk, diag, meta, m, d, dwdq, ddwdqdq, pen, &mut ws.met);
     metric::step(nk, p, m, d, alpha, b, hm, acc, &mut ws.met);
     trusted
+}
+
+/// Tests can switch the constant-direction path off (per thread), to compare it with the
+/// general one; always `false` outside tests.
+#[inline(always)]
+fn force_dynamic() -> bool {
+    #[cfg(test)]
+    return crate::tests::const_r::FORCE_DYNAMIC.with(|f| f.get());
+    #[cfg(not(test))]
+    false
+}
+
+/// Steps (b), the metric's output terms, (e) and (f) of one output's PLS model `out` (`R` > 0:
+/// its number of directions, as a constant); returns the RF's prediction for that output.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn output_step<const R: usize>(
+    p: &Params,
+    out: &mut crate::rf::Pls,
+    nr: usize,
+    omega: f64,
+    y: f64,
+    w: f64,
+    acc: &mut MetricAcc,
+    ws: &mut pls::PlsScratch,
+) -> f64 {
+    let r = pls::update_regression::<R>(out, nr, omega, y, w, ws);
+    if p.cfg.update_d {
+        let (sv, ps) = (&ws.s, &mut ws.ps);
+        metric::output_terms::<R>(out, nr, w, sv, ps, r.e_cv, r.e, p.cfg.meta, acc);
+    }
+    // A direction added now is forgotten in this step too (the count is no longer `R`).
+    if out.check_grow(p) {
+        pls::forget::<0>(out, p.cfg.tau_lambda, p.cfg.final_lambda);
+    } else {
+        pls::forget::<R>(out, p.cfg.tau_lambda, p.cfg.final_lambda);
+    }
+    // The slope is recomputed when a prediction needs it (`Pls::refresh_slope`).
+    out.slope_stale = true;
+    r.yp
 }

@@ -147,7 +147,7 @@ fn loo_cost_derivative_matches_finite_differences() {
     pls.n_data[0] = 1e3;
     pls.lambda[0] = 0.999;
     let mut acc = MetricAcc::default();
-    output_terms(
+    output_terms::<0>(
         &mut pls,
         4,
         w,
