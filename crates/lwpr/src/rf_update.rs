@@ -83,12 +83,20 @@ pub(crate) fn update_rf<const NK: usize, const NR: usize, const AVX: bool>(
 }
 
 /// Tests can switch the constant-direction path off (per thread), to compare it with the
-/// general one; always `false` outside tests.
+/// general one, and count the times it was taken; always `false` outside tests.
+#[cfg(test)]
+fn force_dynamic() -> bool {
+    use crate::tests::const_r::{FAST_PATH_TAKEN, FORCE_DYNAMIC};
+    let off = FORCE_DYNAMIC.with(|f| f.get());
+    if !off {
+        FAST_PATH_TAKEN.with(|n| n.set(n.get() + 1));
+    }
+    off
+}
+
+#[cfg(not(test))]
 #[inline(always)]
 fn force_dynamic() -> bool {
-    #[cfg(test)]
-    return crate::tests::const_r::FORCE_DYNAMIC.with(|f| f.get());
-    #[cfg(not(test))]
     false
 }
 

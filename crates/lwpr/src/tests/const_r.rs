@@ -11,6 +11,8 @@ use std::cell::Cell;
 thread_local! {
     /// Set: every output takes the general path (see `rf_update::force_dynamic`).
     pub(crate) static FORCE_DYNAMIC: Cell<bool> = const { Cell::new(false) };
+    /// Outputs that took the constant-direction path (counted when it is not switched off).
+    pub(crate) static FAST_PATH_TAKEN: Cell<u64> = const { Cell::new(0) };
 }
 
 /// Trains a 21-input model (a shape compiled with constant dimensions) on a linear function of
@@ -45,8 +47,19 @@ fn constant_two_directions_match_the_general_path() {
             final_lambda: 0.995,
             ..Default::default()
         };
+        FAST_PATH_TAKEN.with(|n| n.set(0));
         let (fast, grown) = train(false, &cfg);
+        let taken = FAST_PATH_TAKEN.with(|n| n.get());
         let (general, grown_g) = train(true, &cfg);
+        assert!(
+            taken > 1000,
+            "the constant path ran {taken} times: the test misses its case"
+        );
+        assert_eq!(
+            FAST_PATH_TAKEN.with(|n| n.get()),
+            taken,
+            "the switch did not hold"
+        );
         assert!(
             grown > 0,
             "no RF grew a third direction: the test misses its case"
