@@ -220,8 +220,8 @@ pub(crate) fn update_regression<const R: usize>(
 
 /// Step (f): `n_data_j ← λ_j n_data_j + 1`, then the forgetting schedule.
 #[inline(always)]
-pub(crate) fn forget<const R: usize>(pls: &mut Pls, tau: f64, final_lambda: f64) {
-    for j in 0..if R > 0 { R } else { pls.n_reg } {
+pub(crate) fn forget(pls: &mut Pls, tau: f64, final_lambda: f64) {
+    for j in 0..pls.n_reg {
         pls.n_data[j] = pls.n_data[j] * pls.lambda[j] + 1.0;
         pls.lambda[j] = tau * pls.lambda[j] + final_lambda * (1.0 - tau);
     }

@@ -119,12 +119,9 @@ fn output_step<const R: usize>(
         let (sv, ps) = (&ws.s, &mut ws.ps);
         metric::output_terms::<R>(out, nr, w, sv, ps, r.e_cv, r.e, p.cfg.meta, acc);
     }
-    // A direction added now is forgotten in this step too (the count is no longer `R`).
-    if out.check_grow(p) {
-        pls::forget::<0>(out, p.cfg.tau_lambda, p.cfg.final_lambda);
-    } else {
-        pls::forget::<R>(out, p.cfg.tau_lambda, p.cfg.final_lambda);
-    }
+    out.check_grow(p);
+    // Over the directions as they are now (one may have just been added).
+    pls::forget(out, p.cfg.tau_lambda, p.cfg.final_lambda);
     // The slope is recomputed when a prediction needs it (`Pls::refresh_slope`).
     out.slope_stale = true;
     r.yp

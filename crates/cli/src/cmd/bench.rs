@@ -102,15 +102,17 @@ pub fn run(a: Args) -> Result<()> {
     }
 }
 
-/// `f` for seeds s0..s0+n, each repeated `repeat` times (smallest times kept); medians and
-/// per-seed values (`epochs` is reported).
+/// A cross test (`run`: `datasets::cross_run` or `cross21_run`) with `cfg` for `epochs` over
+/// the seeds of `a`, each repeated `a.repeat` times (smallest times kept); medians and
+/// per-seed values.
 fn cross(
-    s0: u64,
-    n: u64,
+    a: &LwprArgs,
+    cfg: &LwprConfig,
     epochs: usize,
-    repeat: usize,
-    f: impl Fn(u64) -> Result<RunResult, lwpr::LwprError>,
+    run: fn(&LwprConfig, u64, usize) -> Result<RunResult, lwpr::LwprError>,
 ) -> Result<Value> {
+    let (s0, n, repeat) = (a.first_seed, a.seeds, a.repeat);
+    let f = |seed| run(cfg, seed, epochs);
     let mut runs = Vec::new();
     // n ≥ 1 and s0 + (n − 1) fits (checked by the caller).
     for seed in s0..=s0 + (n - 1) {
@@ -167,13 +169,8 @@ fn lwpr(a: LwprArgs) -> Result<()> {
         out.insert(name.into(), v);
     };
     if want(Test::Cross2) {
-        let (cfg, e) = (cross_config(), a.cross2_epochs);
-        say(
-            "cross_2d",
-            cross(a.first_seed, a.seeds, e, a.repeat, |s| {
-                cross_run(&cfg, s, e)
-            })?,
-        );
+        let v = cross(&a, &cross_config(), a.cross2_epochs, cross_run)?;
+        say("cross_2d", v);
     }
     if want(Test::Cross21) {
         let prune_rule = match a.prune {
@@ -184,13 +181,8 @@ fn lwpr(a: LwprArgs) -> Result<()> {
             prune_rule,
             ..cross21_config()
         };
-        let e = a.cross21_epochs;
-        say(
-            "cross_21d",
-            cross(a.first_seed, a.seeds, e, a.repeat, |s| {
-                cross21_run(&cfg, s, e)
-            })?,
-        );
+        let v = cross(&a, &cfg, a.cross21_epochs, cross21_run)?;
+        say("cross_21d", v);
     }
     if want(Test::Sarcos7) {
         let mut best = sarcos7(&a)?;
