@@ -55,6 +55,7 @@ pub mod datasets;
 mod error;
 mod io;
 mod metric;
+mod metric_2d;
 mod metric_call;
 mod metric_full;
 mod metric_wide;
@@ -65,6 +66,7 @@ mod pls;
 mod predict;
 mod rf;
 mod rf_update;
+mod rf_update_2d;
 mod scratch;
 mod simd;
 

@@ -29,6 +29,13 @@ pub(crate) fn update_rf<const NK: usize, const NR: usize, const AVX: bool>(
     let nr = if NR > 0 { NR } else { p.nr() };
     let (ml, ny) = (p.mlen(), p.n_local_out());
     let diag = p.cfg.diag_only;
+    // Two inputs each, a full metric and one output: every dimension a constant.
+    if NK == 2 && NR == 2 && crate::rf_update_2d::applies(p, sub, i) && !force_dynamic() {
+        #[cfg(test)]
+        crate::tests::rf_2d::TAKEN.with(|n| n.set(n.get() + 1));
+        let y = ws.yn[o0];
+        return crate::rf_update_2d::update_rf_2d(p, sub, i, w, dwdq, ddwdqdq, y, ws);
+    }
     let y = &ws.yn[o0..o0 + ny];
     let rf = &mut sub.rfs[i];
     let omega = rf.outs[0].sum_w[0] * rf.outs[0].lambda[0];

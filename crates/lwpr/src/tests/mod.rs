@@ -5,4 +5,5 @@ pub(crate) mod const_r;
 mod derivatives;
 mod fused;
 mod pls_exact;
+pub(crate) mod rf_2d;
 mod wide;
