@@ -37,6 +37,8 @@ pub(crate) fn step_2d(
     ddwdqdq: f64,
 ) {
     let MetricState { m, d, alpha, b, hm } = st;
+    // `α = e^b` by `f64::exp` below, as `full_step` does at this size.
+    debug_assert!(crate::metric::libm_exp(2));
     let (meta, rate, pen) = (p.cfg.meta, p.cfg.meta_rate, p.penalty_n);
     let inv_n = 1.0 / acc.n as f64;
     let (ca, cb, cc) = (acc.a * inv_n, acc.b * inv_n, acc.c * inv_n);
@@ -97,6 +99,10 @@ pub(crate) fn step_2d(
         let k = K[e];
         let dm = alpha[k] * g[e];
         let halve = dm > thr;
+        #[cfg(test)]
+        if halve {
+            crate::tests::rf_2d::HALVED.with(|n| n.set(n.get() + 1));
+        }
         alpha[k] = if halve { alpha[k] * 0.5 } else { alpha[k] };
         m[k] = if halve { m[k] } else { m[k] - dm };
     }

@@ -30,7 +30,7 @@ pub(crate) fn update_rf<const NK: usize, const NR: usize, const AVX: bool>(
     let (ml, ny) = (p.mlen(), p.n_local_out());
     let diag = p.cfg.diag_only;
     // Two inputs each, a full metric and one output: every dimension a constant.
-    if NK == 2 && NR == 2 && crate::rf_update_2d::applies(p, sub, i) && !force_dynamic() {
+    if NK == 2 && NR == 2 && crate::rf_update_2d::applies(p, sub, i) && !general_only() {
         #[cfg(test)]
         crate::tests::rf_2d::TAKEN.with(|n| n.set(n.get() + 1));
         let y = ws.yn[o0];
@@ -104,6 +104,19 @@ fn force_dynamic() -> bool {
 #[cfg(not(test))]
 #[inline(always)]
 fn force_dynamic() -> bool {
+    false
+}
+
+/// Tests can switch the 2-D path off too (the same switch, not counted); always `false`
+/// outside tests.
+#[cfg(test)]
+fn general_only() -> bool {
+    crate::tests::const_r::FORCE_DYNAMIC.with(|f| f.get())
+}
+
+#[cfg(not(test))]
+#[inline(always)]
+fn general_only() -> bool {
     false
 }
 

@@ -1,8 +1,12 @@
 //! The 2-D update with every dimension a constant (`rf_update_2d`, `metric_2d`) against the
-//! general path, bit for bit: whole saved models after training, for every configuration the
-//! 2-D path takes (meta learning on and off, metric learning off, Gaussian and BiSquare
-//! kernels, shared RFs with one output, a kernel and a regression on different input pairs,
-//! normalised inputs, rates large enough to halve).
+//! general path, bit for bit: whole saved models and predictions after training, for every
+//! configuration the 2-D path takes (meta learning on and off, metric learning off, Gaussian
+//! and BiSquare kernels, shared RFs with one output, two outputs with an RF list each, a kernel
+//! and a regression on different input pairs, normalised inputs, fast forgetting), and for
+//! RFs whose two directions have seen different amounts of data (as a loaded model may have).
+//!
+//! The general path here is `output_step::<0>`: `FORCE_DYNAMIC` switches off both shortcuts
+//! (the constant two directions are compared with it in `const_r.rs`).
 
 use super::const_r::FORCE_DYNAMIC;
 use crate::config::{Kernel, LwprConfig, MetricInit, Norm};
@@ -14,16 +18,23 @@ use std::cell::Cell;
 thread_local! {
     /// RF updates that took the 2-D path (counted by `rf_update::update_rf`).
     pub(crate) static TAKEN: Cell<u64> = const { Cell::new(0) };
+    /// Elements of `M` whose step the 2-D path halved into a rate cut (`metric_2d`).
+    pub(crate) static HALVED: Cell<u64> = const { Cell::new(0) };
 }
 
-/// Trains a model on `n_in` inputs (targets: the cross function of inputs 0 and 1 plus a
-/// linear term in the last input, with noise) with the 2-D path on or off; returns the saved
-/// model, its predictions on a grid and the number of 2-D updates.
-fn train(general: bool, n_in: usize, cfg: &LwprConfig) -> (Vec<u8>, Vec<u64>, u64) {
+/// What a run gives: the saved model, its predictions on a fixed set of inputs, and the
+/// counts of 2-D updates and halved steps.
+type Run = (Vec<u8>, Vec<u64>, u64, u64);
+
+/// Trains `m` on `n` samples (seed `seed`) with the 2-D path on or off. Targets: the cross
+/// function of inputs 0 and 1 plus a linear term in the last input, with noise; a second
+/// output, if any, is its negative plus the first input.
+fn train(general: bool, m: &mut Lwpr, seed: u64, n: usize) -> Run {
+    let (n_in, n_out) = (m.params().n_in, m.params().n_out);
     FORCE_DYNAMIC.with(|f| f.set(general));
-    TAKEN.with(|n| n.set(0));
-    let mut m = Lwpr::new(n_in, 1, cfg).unwrap();
-    let mut rng = ChaCha8Rng::seed_from_u64(11);
+    TAKEN.with(|c| c.set(0));
+    HALVED.with(|c| c.set(0));
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let f = |x: &[f64]| {
         let (a, b) = (x[0], x[1]);
         let cross = (-10.0 * a * a)
@@ -32,28 +43,39 @@ fn train(general: bool, n_in: usize, cfg: &LwprConfig) -> (Vec<u8>, Vec<u64>, u6
             .max(1.25 * (-5.0 * (a * a + b * b)).exp());
         cross + 0.5 * x[n_in - 1]
     };
-    for _ in 0..3000 {
+    for _ in 0..n {
         let x: Vec<f64> = (0..n_in).map(|_| rng.random_range(-1.0..1.0)).collect();
-        let y = f(&x) + 0.1 * rng.random_range(-1.0..1.0);
-        m.update(&x, &[y]).unwrap();
+        let y0 = f(&x) + 0.1 * rng.random_range(-1.0..1.0);
+        let y = [y0, x[0] - y0];
+        m.update(&x, &y[..n_out]).unwrap();
     }
     let mut preds = Vec::new();
     for k in 0..200 {
         let x: Vec<f64> = (0..n_in)
             .map(|i| ((k * (i + 3)) % 41) as f64 / 20.0 - 1.0)
             .collect();
-        let mut y = [0.0];
+        let mut y = vec![0.0; n_out];
         if m.predict(&x, &mut y).is_ok() {
-            preds.push(y[0].to_bits());
+            preds.extend(y.iter().map(|v| v.to_bits()));
         }
     }
     FORCE_DYNAMIC.with(|f| f.set(false));
-    (m.to_bytes(), preds, TAKEN.with(|n| n.get()))
+    let counts = (TAKEN.with(|c| c.get()), HALVED.with(|c| c.get()));
+    (m.to_bytes(), preds, counts.0, counts.1)
 }
 
-#[test]
-fn the_2d_update_matches_the_general_path() {
-    let base = LwprConfig {
+/// Asserts that the two paths agree and that the 2-D one ran; returns the halved steps.
+fn compare(name: &str, fast: Run, general: Run) -> u64 {
+    assert!(fast.2 > 5_000, "{name}: the 2-D path ran {} times", fast.2);
+    assert_eq!(general.2, 0, "{name}: the 2-D path ran with the switch on");
+    assert!(fast.1.len() > 150, "{name}: too few predictions");
+    assert!(fast.0 == general.0, "{name}: the saved models differ");
+    assert_eq!(fast.1, general.1, "{name}: the predictions differ");
+    fast.3
+}
+
+fn base() -> LwprConfig {
+    LwprConfig {
         init_d: MetricInit::Scalar(25.0),
         init_alpha: 250.0,
         w_gen: 0.2,
@@ -61,69 +83,119 @@ fn the_2d_update_matches_the_general_path() {
         meta: true,
         meta_rate: 250.0,
         ..Default::default()
-    };
-    let cases: Vec<(&str, usize, LwprConfig)> = vec![
-        ("cross, meta", 2, base.clone()),
+    }
+}
+
+#[test]
+fn the_2d_update_matches_the_general_path() {
+    let b = base();
+    let cases: Vec<(&str, usize, usize, LwprConfig)> = vec![
+        ("cross, meta", 2, 1, b.clone()),
         (
             "no meta",
             2,
+            1,
             LwprConfig {
                 meta: false,
-                ..base.clone()
+                ..b.clone()
             },
         ),
         (
             "no metric learning",
             2,
+            1,
             LwprConfig {
                 update_d: false,
-                ..base.clone()
+                ..b.clone()
             },
         ),
         (
             "bisquare, large rates",
             2,
+            1,
             LwprConfig {
                 kernel: Kernel::Bisquare,
                 init_alpha: 5000.0,
-                ..base.clone()
+                ..b.clone()
             },
         ),
         (
             "shared RFs",
             2,
+            1,
             LwprConfig {
                 shared_rfs: true,
-                ..base.clone()
+                ..b.clone()
             },
         ),
+        ("two outputs, an RF list each", 2, 2, b.clone()),
         (
             "kernel on (0, 1), regression on (1, 2)",
             3,
+            1,
             LwprConfig {
                 kernel_dims: Some(vec![0, 1]),
                 regression_dims: Some(vec![1, 2]),
-                ..base.clone()
+                ..b.clone()
             },
         ),
         (
             "normalised inputs, fast forgetting",
             2,
+            1,
             LwprConfig {
                 norm_in: Norm::List(vec![0.5, 2.0]),
                 init_lambda: 0.99,
                 final_lambda: 0.995,
-                ..base.clone()
+                ..b.clone()
+            },
+        ),
+        (
+            // λ ≈ 0.9: the cost terms and error sums start while the second direction does
+            // not predict yet (n_data ≤ 4).
+            "very fast forgetting",
+            2,
+            1,
+            LwprConfig {
+                init_lambda: 0.9,
+                final_lambda: 0.95,
+                tau_lambda: 0.99,
+                ..b.clone()
             },
         ),
     ];
-    for (name, n_in, cfg) in cases {
-        let (fast, fast_pred, taken) = train(false, n_in, &cfg);
-        let (general, general_pred, taken_g) = train(true, n_in, &cfg);
-        assert!(taken > 5_000, "{name}: the 2-D path ran {taken} times");
-        assert_eq!(taken_g, 0, "{name}: the switch did not hold");
-        assert!(fast_pred.len() > 150, "{name}: too few predictions");
-        assert!(fast == general, "{name}: the saved models differ");
-        assert_eq!(fast_pred, general_pred, "{name}: the predictions differ");
+    let mut halved = 0;
+    for (name, n_in, n_out, cfg) in cases {
+        let run = |general| {
+            train(
+                general,
+                &mut Lwpr::new(n_in, n_out, &cfg).unwrap(),
+                11,
+                3000,
+            )
+        };
+        halved += compare(name, run(false), run(true));
     }
+    assert!(
+        halved > 0,
+        "no case halved a step: the test misses that branch"
+    );
+}
+
+/// RFs whose second direction has seen less data than the first (`n_data₁ < n_data₀`), so
+/// that it is left out of the cost terms (`n_data₁·(1 − λ₀) ≤ 0.1`) or of the prediction
+/// (`n_data₁ ≤ 4`) while the first is in: a trained model so edited, then trained on by
+/// both paths.
+#[test]
+fn the_2d_update_matches_with_unequal_directions() {
+    let cfg = base();
+    let mut m = Lwpr::new(2, 1, &cfg).unwrap();
+    train(false, &mut m, 5, 1500);
+    for (k, rf) in m.subs[0].rfs.iter_mut().enumerate() {
+        let s = &mut rf.outs[0];
+        s.n_data[1] = if k % 2 == 0 { 2.0 } else { 0.05 * s.n_data[0] };
+    }
+    let bytes = m.to_bytes();
+    let run = |general| train(general, &mut Lwpr::from_bytes(&bytes).unwrap(), 6, 1500);
+    compare("unequal directions", run(false), run(true));
 }
