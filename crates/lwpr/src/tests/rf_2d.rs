@@ -9,7 +9,7 @@
 //! (the constant two directions are compared with it in `const_r.rs`).
 
 use super::const_r::FORCE_DYNAMIC;
-use crate::config::{Kernel, LwprConfig, MetricInit, Norm};
+use crate::config::{Kernel, LwprConfig, Norm};
 use crate::model::Lwpr;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -74,16 +74,9 @@ fn compare(name: &str, fast: Run, general: Run) -> u64 {
     fast.3
 }
 
+/// The cross test's config (full metric, meta learning).
 fn base() -> LwprConfig {
-    LwprConfig {
-        init_d: MetricInit::Scalar(25.0),
-        init_alpha: 250.0,
-        w_gen: 0.2,
-        diag_only: false,
-        meta: true,
-        meta_rate: 250.0,
-        ..Default::default()
-    }
+    crate::datasets::cross_config()
 }
 
 #[test]
