@@ -103,6 +103,39 @@ fn bench_lwpr_cross21_takes_its_seeds_and_epochs() {
         "{nmse:?}"
     );
     assert_ne!(nmse[0], nmse[1], "two seeds, two data sets");
+    assert_eq!(c["embedding"], "rotation");
+}
+
+#[test]
+fn bench_lwpr_cross21_embeds_with_or_without_the_rotation() {
+    let run = |embedding: &str| {
+        let args = [
+            "bench",
+            "lwpr",
+            "--only",
+            "cross21",
+            "--seeds",
+            "1",
+            "--cross21-epochs",
+            "1",
+            "--cross21-embedding",
+            embedding,
+            "--json",
+        ];
+        let (ok, out, err) = osrl(&args);
+        assert!(ok, "{err}");
+        last_json(&out)["cross_21d"].clone()
+    };
+    let (rot, id) = (run("rotation"), run("identity"));
+    assert_eq!(
+        (&rot["embedding"], &id["embedding"]),
+        (&"rotation".into(), &"identity".into())
+    );
+    let e = |c: &serde_json::Value| c["nmse"].as_f64().unwrap();
+    assert!(e(&id).is_finite() && e(&id) > 0.0);
+    assert_ne!(e(&rot), e(&id), "the embedding changes the fit");
+    let (ok, _, err) = osrl(&["bench", "lwpr", "--cross21-embedding", "shear"]);
+    assert!(!ok && err.contains("shear"), "{err}");
 }
 
 #[test]

@@ -3,8 +3,9 @@
 //! - `cross_2d`: the reference library's cross test (`shared/LWPR.md`): 500 noisy points, 20
 //!   epochs (`--cross2-epochs`), tested on the 41×41 grid, over `--seeds` seeds from
 //!   `--first-seed` on;
-//! - `cross_21d`: the same points embedded in 21-D by a random rotation, 25 epochs
-//!   (`--cross21-epochs`), full metric with meta learning;
+//! - `cross_21d`: the same points embedded in 21-D by a random rotation (or, with
+//!   `--cross21-embedding identity`, unrotated), 25 epochs (`--cross21-epochs`), full metric
+//!   with meta learning; key `embedding`;
 //! - `sarcos7_invdyn`: robot inverse dynamics, inputs `[q, q̇, q̈]` (21-D), outputs the 7 joint
 //!   torques of the SARCOS master arm by RNEA, diagonal metric, one model per output.
 //!
@@ -15,7 +16,10 @@
 
 use crate::util;
 use anyhow::{Context, Result};
-use lwpr::datasets::{cross21_config, cross21_run, cross_config, cross_run, RunResult};
+use lwpr::datasets::{
+    cross21_config, cross21_embedded_run, cross21_run, cross_config, cross_run, Embedding,
+    RunResult,
+};
 use lwpr::{Lwpr, LwprConfig, MetricInit, Norm, NormKeyword, PruneRule};
 use osrl_dynamics::{rnea, robots};
 use rand::seq::SliceRandom;
@@ -53,6 +57,14 @@ enum Prune {
     Narrower,
 }
 
+#[derive(clap::ValueEnum, Clone, Copy, PartialEq)]
+enum Embed {
+    /// One random rotation per seed (the standard test).
+    Rotation,
+    /// The points in inputs 0 and 1, zeros in the other 19 (what the rotation costs).
+    Identity,
+}
+
 #[derive(clap::Args)]
 struct LwprArgs {
     /// Number of seeds of the cross tests (S..S+N with S = --first-seed); the report gives
@@ -77,6 +89,9 @@ struct LwprArgs {
     /// Prune rule of the 21-D cross test.
     #[arg(long, value_enum, default_value = "wider")]
     prune: Prune,
+    /// How the 21-D cross test embeds its 2-D points.
+    #[arg(long, value_enum, default_value = "rotation")]
+    cross21_embedding: Embed,
     /// Robot data: number of random trajectories.
     #[arg(long, default_value_t = 10)]
     traj: usize,
@@ -102,15 +117,13 @@ pub fn run(a: Args) -> Result<()> {
     }
 }
 
+/// One seed of a cross test: config, seed, epochs.
+type RunFn = fn(&LwprConfig, u64, usize) -> Result<RunResult, lwpr::LwprError>;
+
 /// A cross test (`run`: `datasets::cross_run` or `cross21_run`) with `cfg` for `epochs` over
 /// the seeds of `a`, each repeated `a.repeat` times (smallest times kept); medians and
 /// per-seed values.
-fn cross(
-    a: &LwprArgs,
-    cfg: &LwprConfig,
-    epochs: usize,
-    run: fn(&LwprConfig, u64, usize) -> Result<RunResult, lwpr::LwprError>,
-) -> Result<Value> {
+fn cross(a: &LwprArgs, cfg: &LwprConfig, epochs: usize, run: RunFn) -> Result<Value> {
     let (s0, n, repeat) = (a.first_seed, a.seeds, a.repeat);
     let f = |seed| run(cfg, seed, epochs);
     let mut runs = Vec::new();
@@ -181,7 +194,15 @@ fn lwpr(a: LwprArgs) -> Result<()> {
             prune_rule,
             ..cross21_config()
         };
-        let v = cross(&a, &cfg, a.cross21_epochs, cross21_run)?;
+        let (run, name): (RunFn, _) = match a.cross21_embedding {
+            Embed::Rotation => (cross21_run, "rotation"),
+            Embed::Identity => (
+                |c, s, e| cross21_embedded_run(c, s, e, Embedding::Identity),
+                "identity",
+            ),
+        };
+        let mut v = cross(&a, &cfg, a.cross21_epochs, run)?;
+        v["embedding"] = json!(name);
         say("cross_21d", v);
     }
     if want(Test::Sarcos7) {
