@@ -224,17 +224,20 @@ pub fn cross21_embedded_run(
     epochs: usize,
     e: Embedding,
 ) -> Result<RunResult, LwprError> {
+    let (train, test, _) = cross21_data(seed, e);
+    run(cfg, &train, &test, epochs, seed)
+}
+
+/// The 21-D cross test's data for `seed`: the 500 training points of [`cross_train`] (from a
+/// generator seeded with `seed`) and the test grid, both embedded by `e`, and the matrix `R`
+/// that embeds them (`x = R · [x₁, x₂, 0, …]`; drawn after the points, so both embeddings of
+/// a seed share them; the identity for [`Embedding::Identity`]).
+pub fn cross21_data(seed: u64, e: Embedding) -> (Data, Data, DMatrix<f64>) {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let train = cross_train(&mut rng, 500);
     let rot = match e {
         Embedding::Rotation => rotation(&mut rng, 21),
         Embedding::Identity => DMatrix::identity(21, 21),
     };
-    run(
-        cfg,
-        &embed(&train, &rot),
-        &embed(&cross_grid(), &rot),
-        epochs,
-        seed,
-    )
+    (embed(&train, &rot), embed(&cross_grid(), &rot), rot)
 }

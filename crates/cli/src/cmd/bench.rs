@@ -120,7 +120,7 @@ pub fn run(a: Args) -> Result<()> {
 /// One seed of a cross test: config, seed, epochs.
 type RunFn = fn(&LwprConfig, u64, usize) -> Result<RunResult, lwpr::LwprError>;
 
-/// A cross test (`run`: `datasets::cross_run` or `cross21_run`) with `cfg` for `epochs` over
+/// A cross test (`run`: `datasets::cross_run`, `cross21_run` or the unrotated 21-D run) with `cfg` for `epochs` over
 /// the seeds of `a`, each repeated `a.repeat` times (smallest times kept); medians and
 /// per-seed values.
 fn cross(a: &LwprArgs, cfg: &LwprConfig, epochs: usize, run: RunFn) -> Result<Value> {
