@@ -1,7 +1,8 @@
-//! The full-metric step (d) of a 2-D kernel, for [`crate::rf_update_2d`]: the fused step of
-//! [`crate::metric_full::full_step`] at `nk = 2` with one output's sums, on fixed-size arrays,
-//! with the same expressions in the same order (the same bits; a test checks the whole update
-//! against the general path).
+//! The metric part of [`crate::rf_update_2d`]: one output's cost terms
+//! ([`crate::metric::output_terms`] with two directions) and the fused full-metric step (d) of
+//! [`crate::metric_full::full_step`] at `nk = 2`, on fixed-size arrays, with the same
+//! expressions in the same order (the same bits; a test checks the whole update against the
+//! general path).
 //!
 //! `M` is upper-triangular and row-major: its free elements are `M₀₀`, `M₀₁` (row 0, indices
 //! 0 and 1) and `M₁₁` (row 1, index 3). The rows' updates are independent (each reads only its
@@ -10,6 +11,8 @@
 
 use crate::metric::MetricAcc;
 use crate::params::Params;
+use crate::rf::Pls;
+use crate::rf_update_2d::arr;
 
 /// One RF's metric state (`2 × 2` row-major; `M`, `α`, `b`, `hm` use the upper triangle).
 pub(crate) struct MetricState<'a> {
@@ -112,4 +115,75 @@ pub(crate) fn step_2d(
     d[1] = d01;
     d[2] = d01;
     d[3] = 0.0 + m[1] * m[1] + m[3] * m[3];
+}
+
+/// `metric::output_terms::<2>`: the output's cost terms of the metric gradient, and the
+/// memory traces `H`, `r`; an empty sum while `n_data[0]·(1 − λ[0]) ≤ 0.1`.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub(crate) fn output_terms(
+    out: &mut Pls,
+    w: f64,
+    s: [f64; 2],
+    e_cv: f64,
+    e: f64,
+    meta: bool,
+    n_data: [f64; 2],
+    lambda: [f64; 2],
+) -> MetricAcc {
+    let mut acc = MetricAcc::default();
+    let l0 = 1.0 - lambda[0];
+    let ok = [n_data[0] * l0 > 0.1, n_data[1] * l0 > 0.1];
+    if !ok[0] {
+        return acc;
+    }
+    let ss_s2 = *arr::<2>(&mut out.ss_s2);
+    let (h_tr, r_tr) = (arr::<2>(&mut out.h_tr), arr::<2>(&mut out.r_tr));
+    let mut h = 0.0;
+    for j in 0..2 {
+        if ok[j] {
+            h += s[j] * s[j] / ss_s2[j];
+        }
+    }
+    h *= w;
+    let big_w = out.sum_w[0];
+    let big_e = if n_data[1] > 4.0 {
+        out.sum_e_cv2[1]
+    } else {
+        out.sum_e_cv2[0]
+    };
+    let t = (out.sum_e2 / (big_e + 1e-10)).powi(4).min(1.0);
+    let e_cv2 = e_cv * e_cv;
+    let mut dj1 = -big_e / big_w + e_cv2;
+    let (mut spse, mut ps) = (0.0, [0.0; 2]);
+    for j in 0..2 {
+        if ok[j] {
+            ps[j] = s[j] / ss_s2[j];
+            let pse = e * ps[j];
+            dj1 -= 2.0 * pse * h_tr[j] + 2.0 * ps[j] * ps[j] * r_tr[j];
+            spse += s[j] * pse;
+        }
+    }
+    dj1 /= big_w;
+    if meta {
+        let mut ddj1 = 2.0 * (e * e * h / w - e_cv2 / big_w) + big_e / (big_w * big_w);
+        for j in 0..2 {
+            if ok[j] {
+                ddj1 += 4.0 * (e * ps[j] / big_w + ps[j] * spse) * h_tr[j];
+            }
+        }
+        acc.c += t * ddj1 / big_w;
+    }
+    acc.a += t * w / big_w;
+    acc.b += t * dj1;
+    acc.n += 1;
+    let (fh, fr) = (w / (1.0 - h), w * w * e_cv2 / (1.0 - h));
+    for j in 0..2 {
+        if ok[j] {
+            let lam = lambda[j];
+            h_tr[j] = lam * h_tr[j] + fh * s[j] * e_cv * t;
+            r_tr[j] = lam * r_tr[j] + fr * s[j] * s[j] * t;
+        }
+    }
+    acc
 }

@@ -3,7 +3,8 @@
 //! regression inputs allow). Steps (a)–(d) and (f) of [`crate::rf_update::update_rf`], with the
 //! same expressions in the same order — so the same bits, checked by a test against the general
 //! path — on the RF's state viewed as fixed-size arrays, without the general path's scratch
-//! buffers, run-time lengths and per-element bounds checks (about half its instructions).
+//! buffers, run-time lengths and per-element bounds checks (a fifth fewer instructions per RF
+//! update; the lwpr README's fifth round has the figures).
 //!
 //! Written out term by term where the general code sums in a particular order: a dot product
 //! of two ([`crate::simd::dot`]) is `(0 + a₀b₀) + a₁b₁`, a row of `M·D` starts from `0`, and so
@@ -24,7 +25,7 @@ pub(crate) fn applies(p: &Params, sub: &SubModel, i: usize) -> bool {
 
 /// The first `N` elements of an RF's state as an array (the state is never shorter).
 #[inline(always)]
-fn arr<const N: usize>(v: &mut [f64]) -> &mut [f64; N] {
+pub(crate) fn arr<const N: usize>(v: &mut [f64]) -> &mut [f64; N] {
     v.first_chunk_mut()
         .expect("RF state shorter than its dimensions")
 }
@@ -93,7 +94,7 @@ pub(crate) fn update_rf_2d(
     // (a, output) and (b): the PLS step; the cost terms of (d).
     let (yp, e_cv, e, s) = regression(out, omega, y, w, xmz, n_data, lambda);
     let acc = if p.cfg.update_d {
-        output_terms(out, w, s, e_cv, e, p.cfg.meta, n_data, lambda)
+        crate::metric_2d::output_terms(out, w, s, e_cv, e, p.cfg.meta, n_data, lambda)
     } else {
         MetricAcc::default()
     };
@@ -217,75 +218,4 @@ fn regression(
         }
     }
     (ypred + *beta0, e_cv_r, e, sn)
-}
-
-/// `metric::output_terms::<2>`: the output's cost terms of the metric gradient, and the
-/// memory traces `H`, `r`; an empty sum while `n_data[0]·(1 − λ[0]) ≤ 0.1`.
-#[allow(clippy::too_many_arguments)]
-#[inline(always)]
-fn output_terms(
-    out: &mut Pls,
-    w: f64,
-    s: [f64; 2],
-    e_cv: f64,
-    e: f64,
-    meta: bool,
-    n_data: [f64; 2],
-    lambda: [f64; 2],
-) -> MetricAcc {
-    let mut acc = MetricAcc::default();
-    let l0 = 1.0 - lambda[0];
-    let ok = [n_data[0] * l0 > 0.1, n_data[1] * l0 > 0.1];
-    if !ok[0] {
-        return acc;
-    }
-    let ss_s2 = *arr::<2>(&mut out.ss_s2);
-    let (h_tr, r_tr) = (arr::<2>(&mut out.h_tr), arr::<2>(&mut out.r_tr));
-    let mut h = 0.0;
-    for j in 0..2 {
-        if ok[j] {
-            h += s[j] * s[j] / ss_s2[j];
-        }
-    }
-    h *= w;
-    let big_w = out.sum_w[0];
-    let big_e = if n_data[1] > 4.0 {
-        out.sum_e_cv2[1]
-    } else {
-        out.sum_e_cv2[0]
-    };
-    let t = (out.sum_e2 / (big_e + 1e-10)).powi(4).min(1.0);
-    let e_cv2 = e_cv * e_cv;
-    let mut dj1 = -big_e / big_w + e_cv2;
-    let (mut spse, mut ps) = (0.0, [0.0; 2]);
-    for j in 0..2 {
-        if ok[j] {
-            ps[j] = s[j] / ss_s2[j];
-            let pse = e * ps[j];
-            dj1 -= 2.0 * pse * h_tr[j] + 2.0 * ps[j] * ps[j] * r_tr[j];
-            spse += s[j] * pse;
-        }
-    }
-    dj1 /= big_w;
-    if meta {
-        let mut ddj1 = 2.0 * (e * e * h / w - e_cv2 / big_w) + big_e / (big_w * big_w);
-        for j in 0..2 {
-            if ok[j] {
-                ddj1 += 4.0 * (e * ps[j] / big_w + ps[j] * spse) * h_tr[j];
-            }
-        }
-        acc.c += t * ddj1 / big_w;
-    }
-    acc.a += t * w / big_w;
-    acc.b += t * dj1;
-    acc.n += 1;
-    let (fh, fr) = (w / (1.0 - h), w * w * e_cv2 / (1.0 - h));
-    for j in 0..2 {
-        if ok[j] {
-            let lam = lambda[j];
-            h_tr[j] = lam * h_tr[j] + fh * s[j] * e_cv * t;
-            r_tr[j] = lam * r_tr[j] + fr * s[j] * s[j] * t;
-        }
-    }
-    acc
 }
