@@ -1,8 +1,8 @@
-//! The metric part of [`crate::rf_update_2d`]: one output's cost terms
-//! ([`crate::metric::output_terms`] with two directions) and the fused full-metric step (d) of
-//! [`crate::metric_full::full_step`] at `nk = 2`, on fixed-size arrays, with the same
-//! expressions in the same order (the same bits; a test checks the whole update against the
-//! general path).
+//! The full-metric step (d) of a 2-D kernel (a compile-time constant): the fused step of
+//! [`crate::metric_full::full_step`] at `nk = 2` on fixed-size arrays, with the same
+//! expressions in the same order (the same bits; a test checks whole models against the
+//! general path); `max |M|` and `D = MᵀM` by the general code. Chosen by
+//! [`crate::metric_call::full_step_call`]; the 2-D PLS step is [`crate::rf_update_2d`].
 //!
 //! `M` is upper-triangular and row-major: its free elements are `M₀₀`, `M₀₁` (row 0, indices
 //! 0 and 1) and `M₁₁` (row 1, index 3). The rows' updates are independent (each reads only its
@@ -11,8 +11,7 @@
 
 use crate::metric::MetricAcc;
 use crate::params::Params;
-use crate::rf::Pls;
-use crate::rf_update_2d::arr;
+use crate::simd::max_abs;
 
 /// One RF's metric state (`2 × 2` row-major; `M`, `α`, `b`, `hm` use the upper triangle).
 pub(crate) struct MetricState<'a> {
@@ -28,7 +27,7 @@ const K: [usize; 3] = [0, 1, 3];
 const ROW: [usize; 3] = [0, 0, 1];
 const COL: [usize; 3] = [0, 1, 1];
 
-/// The step on `st` with the output sums `acc` (one output, non-empty), `dx = x − c` and the
+/// The step on `st` with the output sums `acc` (non-empty), `dx = x − c` and the
 /// kernel derivatives `dwdq`, `ddwdqdq` at the sample; then `D = MᵀM`.
 #[inline(always)]
 pub(crate) fn step_2d(
@@ -45,8 +44,8 @@ pub(crate) fn step_2d(
     let (meta, rate, pen) = (p.cfg.meta, p.cfg.meta_rate, p.penalty_n);
     let inv_n = 1.0 / acc.n as f64;
     let (ca, cb, cc) = (acc.a * inv_n, acc.b * inv_n, acc.c * inv_n);
-    // max |M| over the free elements, as `simd::max_abs` row by row (max is exact).
-    let max_m = 0.0f64.max(m[0].abs()).max(m[1].abs()).max(m[3].abs());
+    // max |M| over the free elements (rows 0 and 1 from the diagonal), as `full_step`.
+    let max_m = max_abs(max_abs(0.0, &m[0..2]), &m[3..4]);
     let thr = 0.1 * max_m;
     // M (x − c) and the rows of M·D (penalty gradient), from the state before the step.
     let mut mdx0 = 0.0;
@@ -109,81 +108,5 @@ pub(crate) fn step_2d(
         alpha[k] = if halve { alpha[k] * 0.5 } else { alpha[k] };
         m[k] = if halve { m[k] } else { m[k] - dm };
     }
-    // D = MᵀM (`metric_full::mtm`).
-    d[0] = 0.0 + m[0] * m[0];
-    let d01 = 0.0 + m[0] * m[1];
-    d[1] = d01;
-    d[2] = d01;
-    d[3] = 0.0 + m[1] * m[1] + m[3] * m[3];
-}
-
-/// `metric::output_terms::<2>`: the output's cost terms of the metric gradient, and the
-/// memory traces `H`, `r`; an empty sum while `n_data[0]·(1 − λ[0]) ≤ 0.1`.
-#[allow(clippy::too_many_arguments)]
-#[inline(always)]
-pub(crate) fn output_terms(
-    out: &mut Pls,
-    w: f64,
-    s: [f64; 2],
-    e_cv: f64,
-    e: f64,
-    meta: bool,
-    n_data: [f64; 2],
-    lambda: [f64; 2],
-) -> MetricAcc {
-    let mut acc = MetricAcc::default();
-    let l0 = 1.0 - lambda[0];
-    let ok = [n_data[0] * l0 > 0.1, n_data[1] * l0 > 0.1];
-    if !ok[0] {
-        return acc;
-    }
-    let ss_s2 = *arr::<2>(&mut out.ss_s2);
-    let (h_tr, r_tr) = (arr::<2>(&mut out.h_tr), arr::<2>(&mut out.r_tr));
-    let mut h = 0.0;
-    for j in 0..2 {
-        if ok[j] {
-            h += s[j] * s[j] / ss_s2[j];
-        }
-    }
-    h *= w;
-    let big_w = out.sum_w[0];
-    let big_e = if n_data[1] > 4.0 {
-        out.sum_e_cv2[1]
-    } else {
-        out.sum_e_cv2[0]
-    };
-    let t = (out.sum_e2 / (big_e + 1e-10)).powi(4).min(1.0);
-    let e_cv2 = e_cv * e_cv;
-    let mut dj1 = -big_e / big_w + e_cv2;
-    let (mut spse, mut ps) = (0.0, [0.0; 2]);
-    for j in 0..2 {
-        if ok[j] {
-            ps[j] = s[j] / ss_s2[j];
-            let pse = e * ps[j];
-            dj1 -= 2.0 * pse * h_tr[j] + 2.0 * ps[j] * ps[j] * r_tr[j];
-            spse += s[j] * pse;
-        }
-    }
-    dj1 /= big_w;
-    if meta {
-        let mut ddj1 = 2.0 * (e * e * h / w - e_cv2 / big_w) + big_e / (big_w * big_w);
-        for j in 0..2 {
-            if ok[j] {
-                ddj1 += 4.0 * (e * ps[j] / big_w + ps[j] * spse) * h_tr[j];
-            }
-        }
-        acc.c += t * ddj1 / big_w;
-    }
-    acc.a += t * w / big_w;
-    acc.b += t * dj1;
-    acc.n += 1;
-    let (fh, fr) = (w / (1.0 - h), w * w * e_cv2 / (1.0 - h));
-    for j in 0..2 {
-        if ok[j] {
-            let lam = lambda[j];
-            h_tr[j] = lam * h_tr[j] + fh * s[j] * e_cv * t;
-            r_tr[j] = lam * r_tr[j] + fr * s[j] * s[j] * t;
-        }
-    }
-    acc
+    crate::metric_full::mtm(2, m, d);
 }

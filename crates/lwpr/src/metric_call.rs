@@ -1,6 +1,6 @@
-//! How the update calls the full-metric step: [`full_step`] inlined for kernels of up to 4
-//! dimensions; above, [`crate::metric_wide::wide_step`] as a function of its own per constant
-//! dimension.
+//! How the update calls the full-metric step: [`crate::metric_2d::step_2d`] for 2-D kernels
+//! (a compile-time constant), [`full_step`] inlined for kernels of up to 4 dimensions; above,
+//! [`crate::metric_wide::wide_step`] as a function of its own per constant dimension.
 
 use crate::metric::{MetricAcc, MetricScratch};
 use crate::metric_full::full_step;
@@ -44,6 +44,19 @@ pub(crate) fn full_step_call<const NK: usize, const AVX: bool>(
         dwdq,
         ddwdqdq,
     } = s;
+    if NK == 2 && !crate::rf_update::general_only() {
+        // Every dimension a constant, on fixed-size arrays (the same arithmetic).
+        use crate::rf_update_2d::arr;
+        let st = crate::metric_2d::MetricState {
+            m: arr(m),
+            d: arr(d),
+            alpha: arr(alpha),
+            b: arr(b),
+            hm: arr(hm),
+        };
+        let dx = *arr::<2>(&mut ws.dx);
+        return crate::metric_2d::step_2d(p, st, acc, dx, dwdq, ddwdqdq);
+    }
     if nk <= 4 {
         return full_step(nk, p, m, d, alpha, b, hm, acc, dwdq, ddwdqdq, ws);
     }

@@ -29,13 +29,6 @@ pub(crate) fn update_rf<const NK: usize, const NR: usize, const AVX: bool>(
     let nr = if NR > 0 { NR } else { p.nr() };
     let (ml, ny) = (p.mlen(), p.n_local_out());
     let diag = p.cfg.diag_only;
-    // Two inputs each, a full metric and one output: every dimension a constant.
-    if NK == 2 && NR == 2 && crate::rf_update_2d::applies(p, sub, i) && !general_only() {
-        #[cfg(test)]
-        crate::tests::rf_2d::TAKEN.with(|n| n.set(n.get() + 1));
-        let y = ws.yn[o0];
-        return crate::rf_update_2d::update_rf_2d(p, sub, i, w, dwdq, ddwdqdq, y, ws);
-    }
     let y = &ws.yn[o0..o0 + ny];
     let rf = &mut sub.rfs[i];
     let omega = rf.outs[0].sum_w[0] * rf.outs[0].lambda[0];
@@ -107,16 +100,16 @@ fn force_dynamic() -> bool {
     false
 }
 
-/// Tests can switch the 2-D path off too (the same switch, not counted); always `false`
-/// outside tests.
+/// Tests can switch the 2-D metric step off too (the same switch, not counted); always
+/// `false` outside tests.
 #[cfg(test)]
-fn general_only() -> bool {
+pub(crate) fn general_only() -> bool {
     crate::tests::const_r::FORCE_DYNAMIC.with(|f| f.get())
 }
 
 #[cfg(not(test))]
 #[inline(always)]
-fn general_only() -> bool {
+pub(crate) fn general_only() -> bool {
     false
 }
 
@@ -134,7 +127,12 @@ fn output_step<const R: usize>(
     acc: &mut MetricAcc,
     ws: &mut pls::PlsScratch,
 ) -> f64 {
-    let r = pls::update_regression::<R>(out, nr, omega, y, w, ws);
+    // Two directions in two inputs: the PLS step on fixed-size arrays (the same arithmetic).
+    let r = if R == 2 && nr == 2 {
+        crate::rf_update_2d::regression_2d(out, omega, y, w, ws)
+    } else {
+        pls::update_regression::<R>(out, nr, omega, y, w, ws)
+    };
     if p.cfg.update_d {
         let (sv, ps) = (&ws.s, &mut ws.ps);
         metric::output_terms::<R>(out, nr, w, sv, ps, r.e_cv, r.e, p.cfg.meta, acc);

@@ -1,27 +1,16 @@
-//! The update of one RF of a 2-D model with every dimension a constant: kernel and regression
-//! on two inputs each, a full metric, one output per RF and two PLS directions (the most two
-//! regression inputs allow). Steps (a)–(d) and (f) of [`crate::rf_update::update_rf`], with the
-//! same expressions in the same order — so the same bits, checked by a test against the general
-//! path — on the RF's state viewed as fixed-size arrays, without the general path's scratch
-//! buffers, run-time lengths and per-element bounds checks (a fifth fewer instructions per RF
-//! update; the lwpr README's fifth round has the figures).
+//! Step (b) of an update — the PLS step of one output — for two regression inputs and two
+//! directions (the most two inputs allow), with every dimension a constant:
+//! [`crate::pls::update_regression`]'s arithmetic, the same expressions in the same order (so
+//! the same bits, checked by a test against the general path), on the state viewed as
+//! fixed-size arrays, without its run-time lengths and per-element bounds checks. Chosen by
+//! `rf_update::output_step`; the 2-D metric step is [`crate::metric_2d`].
 //!
 //! Written out term by term where the general code sums in a particular order: a dot product
-//! of two ([`crate::simd::dot`]) is `(0 + a₀b₀) + a₁b₁`, a row of `M·D` starts from `0`, and so
-//! on; adding `0.0` is kept because it is not an identity for `−0.0`.
+//! of two ([`crate::simd::dot`]) is `(0 + a₀b₀) + a₁b₁`; adding `0.0` is kept because it is
+//! not an identity for `−0.0`.
 
-use crate::metric::MetricAcc;
-use crate::params::Params;
-use crate::rf::{Pls, Rf, SubModel};
-use crate::scratch::Scratch;
-
-/// Whether [`update_rf_2d`] applies to RF `i` of a model whose kernel and regression inputs
-/// are both 2-D (the caller's constants): a full metric, one output, two directions.
-#[inline(always)]
-pub(crate) fn applies(p: &Params, sub: &SubModel, i: usize) -> bool {
-    let rf = &sub.rfs[i];
-    !p.cfg.diag_only && rf.outs.len() == 1 && rf.outs[0].n_reg == 2
-}
+use crate::pls::{PlsScratch, RegOut};
+use crate::rf::Pls;
 
 /// The first `N` elements of an RF's state as an array (the state is never shorter).
 #[inline(always)]
@@ -39,106 +28,22 @@ fn dot2(a: &[f64], b: [f64; 2]) -> f64 {
     r
 }
 
-/// [`crate::rf_update::update_rf`] for RF `i` when [`applies`] holds: the sample is `ws.xk`,
-/// `ws.xr` and the output `y`; adds `w·ŷ` to `ws.yacc[0]` when the RF is trustworthy and
-/// returns whether it is.
-#[allow(clippy::too_many_arguments)]
+/// `pls::update_regression::<2>` for two regression inputs (steps (a, output part) and (b)):
+/// the same arithmetic on fixed-size arrays; `x̃` from `ws.xmz`, the new projections into
+/// `ws.s`, `n_data` and `λ` as before this update.
 #[inline(always)]
-pub(crate) fn update_rf_2d(
-    p: &Params,
-    sub: &mut SubModel,
-    i: usize,
-    w: f64,
-    dwdq: f64,
-    ddwdqdq: f64,
-    y: f64,
-    ws: &mut Scratch,
-) -> bool {
-    let SubModel {
-        rfs,
-        centers,
-        ms,
-        ds,
-        ..
-    } = sub;
-    let Rf {
-        alpha,
-        b,
-        hm,
-        mean_x,
-        var_x,
-        trustworthy,
-        outs,
-        ..
-    } = &mut rfs[i];
-    let out = &mut outs[0];
-    let x: [f64; 2] = *arr(&mut ws.xr);
-    // (a) The input means, with ω = sum_w[0]·λ[0] before this update.
-    let omega = out.sum_w[0] * out.lambda[0];
-    let (mean_x, var_x) = (arr::<2>(mean_x), arr::<2>(var_x));
-    let inv = 1.0 / (omega + w);
-    let mut xmz = [0.0; 2];
-    for k in 0..2 {
-        let m = (omega * mean_x[k] + w * x[k]) * inv;
-        mean_x[k] = m;
-        let d = x[k] - m;
-        xmz[k] = d;
-        var_x[k] = (omega * var_x[k] + w * d * d) * inv;
-    }
-    // n_data and λ as before this update (forgetting is the last step).
-    let n_data = *arr::<2>(&mut out.n_data);
-    let lambda = *arr::<2>(&mut out.lambda);
-    if n_data[0] > 4.0 {
-        *trustworthy = true;
-    }
-    // (a, output) and (b): the PLS step; the cost terms of (d).
-    let (yp, e_cv, e, s) = regression(out, omega, y, w, xmz, n_data, lambda);
-    let acc = if p.cfg.update_d {
-        crate::metric_2d::output_terms(out, w, s, e_cv, e, p.cfg.meta, n_data, lambda)
-    } else {
-        MetricAcc::default()
-    };
-    // (f) Forgetting (two directions cannot grow a third in two inputs).
-    let (tau, fin) = (p.cfg.tau_lambda, p.cfg.final_lambda);
-    let (nd, lam) = (arr::<2>(&mut out.n_data), arr::<2>(&mut out.lambda));
-    for j in 0..2 {
-        nd[j] = nd[j] * lam[j] + 1.0;
-        lam[j] = tau * lam[j] + fin * (1.0 - tau);
-    }
-    out.slope_stale = true;
-    let trusted = *trustworthy;
-    if trusted {
-        ws.yacc[0] += w * yp;
-    }
-    if acc.n == 0 {
-        return trusted;
-    }
-    // (d) The metric step at dx = x − c.
-    let (xk, c) = (*arr::<2>(&mut ws.xk), arr::<2>(&mut centers[i * 2..]));
-    let dx = [xk[0] - c[0], xk[1] - c[1]];
-    let st = crate::metric_2d::MetricState {
-        m: arr(&mut ms[i * 4..]),
-        d: arr(&mut ds[i * 4..]),
-        alpha: arr(alpha),
-        b: arr(b),
-        hm: arr(hm),
-    };
-    crate::metric_2d::step_2d(p, st, acc, dx, dwdq, ddwdqdq);
-    trusted
-}
-
-/// `pls::update_regression::<2>` with `x̃ = xmz`: returns the prediction `ŷ`, the leave-one-out
-/// residual of the last trusted direction, the residual `e` and the new projections `s`.
-#[inline(always)]
-fn regression(
+pub(crate) fn regression_2d(
     out: &mut Pls,
     omega: f64,
     y: f64,
     w: f64,
-    xmz: [f64; 2],
-    n_data: [f64; 2],
-    lambda: [f64; 2],
-) -> (f64, f64, f64, [f64; 2]) {
+    ws: &mut PlsScratch,
+) -> RegOut {
+    #[cfg(test)]
+    crate::tests::rf_2d::TAKEN.with(|n| n.set(n.get() + 1));
+    let xmz = *arr::<2>(&mut ws.xmz);
+    let n_data = *arr::<2>(&mut out.n_data);
+    let lambda = *arr::<2>(&mut out.lambda);
     out.beta0 = (omega * out.beta0 + w * y) / (omega + w);
     let ymz = y - out.beta0;
     let Pls {
@@ -217,5 +122,10 @@ fn regression(
             sum_e_cv2[j] = sum_e_cv2[j] * lambda[j] + w * e_cv[j] * e_cv[j];
         }
     }
-    (ypred + *beta0, e_cv_r, e, sn)
+    *arr(&mut ws.s) = sn;
+    RegOut {
+        yp: ypred + *beta0,
+        e_cv: e_cv_r,
+        e,
+    }
 }

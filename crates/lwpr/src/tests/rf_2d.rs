@@ -1,7 +1,8 @@
-//! The 2-D update with every dimension a constant (`rf_update_2d`, `metric_2d`) against the
-//! general path, bit for bit: whole saved models and predictions after training, for every
+//! The 2-D steps with every dimension a constant (the PLS step `rf_update_2d::regression_2d`,
+//! the metric step `metric_2d::step_2d`) against the general path, bit for bit: whole saved models and predictions after training, for every
 //! configuration the 2-D path takes (meta learning on and off, metric learning off, Gaussian
-//! and BiSquare kernels, shared RFs with one output, two outputs with an RF list each, a kernel
+//! and BiSquare kernels, shared RFs with one and with two outputs, two outputs with an RF list
+//! each, a kernel
 //! and a regression on different input pairs, normalised inputs, fast forgetting), and for
 //! RFs whose two directions have seen different amounts of data (as a loaded model may have).
 //!
@@ -16,7 +17,7 @@ use rand_chacha::ChaCha8Rng;
 use std::cell::Cell;
 
 thread_local! {
-    /// RF updates that took the 2-D path (counted by `rf_update::update_rf`).
+    /// PLS steps that took the 2-D path (counted by `rf_update_2d::regression_2d`).
     pub(crate) static TAKEN: Cell<u64> = const { Cell::new(0) };
     /// Elements of `M` whose step the 2-D path halved into a rate cut (`metric_2d`).
     pub(crate) static HALVED: Cell<u64> = const { Cell::new(0) };
@@ -116,6 +117,15 @@ fn the_2d_update_matches_the_general_path() {
             "shared RFs",
             2,
             1,
+            LwprConfig {
+                shared_rfs: true,
+                ..b.clone()
+            },
+        ),
+        (
+            "shared RFs, two outputs",
+            2,
+            2,
             LwprConfig {
                 shared_rfs: true,
                 ..b.clone()
