@@ -50,6 +50,7 @@
 
 #![allow(clippy::needless_range_loop)] // index loops mirror the maths
 
+mod activation;
 mod config;
 pub mod datasets;
 mod error;

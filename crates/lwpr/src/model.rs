@@ -1,8 +1,9 @@
 //! The model and one update (`shared/LWPR.md`, "One update").
 
+use crate::activation::Top2;
 use crate::config::{LwprConfig, PruneRule};
 use crate::error::check_vec;
-use crate::params::{Params, W_UPDATE};
+use crate::params::Params;
 use crate::partition::{RfEvent, RfId};
 use crate::rf::SubModel;
 use crate::scratch::{quad, Scratch};
@@ -228,39 +229,32 @@ fn update_sub_impl<const NK: usize, const NR: usize, const AVX: bool>(
     let (ml, ny) = (p.mlen(), p.n_local_out());
     let diag = p.cfg.diag_only;
     let qb = ws.qb_update;
-    let (mut q1, mut i1, mut q2, mut i2) = (f64::INFINITY, usize::MAX, f64::INFINITY, usize::MAX);
-    // Their activations where already computed (q < qb), for the add/prune tests.
-    let (mut w1, mut w2) = (None, None);
+    let mut top = Top2::new();
     ws.active.clear();
-    let kern = if diag { &sub.ds } else { &sub.ms };
-    // Centres and metrics by chunks (no index arithmetic or bounds checks per RF).
-    let rf_chunks = sub.centers.chunks_exact(nk).zip(kern.chunks_exact(ml));
-    for (i, (c, md)) in rf_chunks.enumerate() {
-        let q = quad(
-            diag,
-            c,
-            md,
-            &ws.xk[..nk],
-            &mut ws.met.dx,
+    if NK == 2 && !diag {
+        // Four RFs at a time (the 2-D cross test's shape); the same `q`s.
+        let active = &mut ws.active;
+        crate::activation::for_each_q::<AVX>(&sub.centers, &sub.ms, &ws.xk, |i, q| {
+            top.visit(p, qb, i, q, active)
+        });
+    } else {
+        let kern = if diag { &sub.ds } else { &sub.ms };
+        // Centres and metrics by chunks (no index arithmetic or bounds checks per RF).
+        let rf_chunks = sub.centers.chunks_exact(nk).zip(kern.chunks_exact(ml));
+        for (i, (c, md)) in rf_chunks.enumerate() {
             // An RF at q ≥ max(qb, q2) is neither updated nor among the two most active.
-            qb.max(q2),
-        );
-        let mut wq = None;
-        if q < qb {
-            let (w, dw, ddw) = p.kernel(q);
-            if w > W_UPDATE {
-                ws.active.push((i, w, dw, ddw));
-            }
-            wq = Some(w);
-        }
-        if q < q2 {
-            if q < q1 {
-                (q2, i2, w2, q1, i1, w1) = (q1, i1, w1, q, i, wq);
-            } else {
-                (q2, i2, w2) = (q, i, wq);
-            }
+            let q = quad(diag, c, md, &ws.xk[..nk], &mut ws.met.dx, qb.max(top.q2));
+            top.visit(p, qb, i, q, &mut ws.active);
         }
     }
+    let Top2 {
+        q1,
+        i1,
+        w1,
+        q2,
+        i2,
+        w2,
+    } = top;
     ws.yacc[..ny].iter_mut().for_each(|v| *v = 0.0);
     let mut sum_w = 0.0;
     for a in 0..ws.active.len() {

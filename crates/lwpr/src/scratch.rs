@@ -200,7 +200,7 @@ fn quad_diag(c: &[f64], d: &[f64], x: &[f64], bound: f64) -> f64 {
 /// checked: the full sum costs less than a mispredicted branch (and a value `≥ bound` is
 /// never used beyond the test against it).
 #[inline(always)]
-fn quad_full_n<const N: usize>(c: &[f64], m: &[f64], x: &[f64], bound: f64) -> f64 {
+pub(crate) fn quad_full_n<const N: usize>(c: &[f64], m: &[f64], x: &[f64], bound: f64) -> f64 {
     let (c, m, x) = (&c[..N], &m[..N * N], &x[..N]);
     let mut dx = [0.0; N];
     for i in 0..N {
