@@ -148,12 +148,38 @@ pub fn run(
     epochs: usize,
     seed: u64,
 ) -> Result<RunResult, LwprError> {
-    if epochs == 0 || train.x.is_empty() || test.x.is_empty() {
+    if test.x.is_empty() {
+        return Err(LwprError::Config(
+            "a benchmark run needs samples to test on (0 test samples)".into(),
+        ));
+    }
+    let (mut m, update_us) = fit(cfg, train, epochs, seed)?;
+    let t1 = Instant::now();
+    let nmse = test_nmse(&mut m, test);
+    let predict_us = t1.elapsed().as_secs_f64() * 1e6 / test.x.len() as f64;
+    Ok(RunResult {
+        nmse,
+        n_rfs: m.n_rfs_total(),
+        update_us,
+        predict_us,
+    })
+}
+
+/// The training of [`run`]: the model after `epochs` epochs on `train` (each in a fresh order
+/// from a generator seeded with `seed`) and the wall-clock µs per update (mean). Fails when
+/// `epochs` is 0, `train` is empty, the config is invalid for the data or a sample is not
+/// finite.
+pub fn fit(
+    cfg: &LwprConfig,
+    train: &Data,
+    epochs: usize,
+    seed: u64,
+) -> Result<(Lwpr, f64), LwprError> {
+    if epochs == 0 || train.x.is_empty() {
         return Err(LwprError::Config(format!(
-            "a benchmark run needs at least one epoch and samples to train and test on \
-             (epochs {epochs}, {} training and {} test samples)",
-            train.x.len(),
-            test.x.len()
+            "a benchmark run needs at least one epoch and samples to train on \
+             (epochs {epochs}, {} training samples)",
+            train.x.len()
         )));
     }
     let n_in = train.x[0].len();
@@ -168,7 +194,12 @@ pub fn run(
         }
     }
     let update_us = t0.elapsed().as_secs_f64() * 1e6 / (epochs * train.x.len()) as f64;
-    let t1 = Instant::now();
+    Ok((m, update_us))
+}
+
+/// Test MSE of `m` on `test` over the variance of its targets; a point without an active RF
+/// predicts 0. NaN for an empty `test`.
+pub fn test_nmse(m: &mut Lwpr, test: &Data) -> f64 {
     let mut y = [0.0];
     let mut se = 0.0;
     for (x, &t) in test.x.iter().zip(&test.y) {
@@ -178,16 +209,10 @@ pub fn run(
         };
         se += (p - t) * (p - t);
     }
-    let predict_us = t1.elapsed().as_secs_f64() * 1e6 / test.x.len() as f64;
     let n = test.y.len() as f64;
     let mean = test.y.iter().sum::<f64>() / n;
     let var = test.y.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / n;
-    Ok(RunResult {
-        nmse: se / n / var,
-        n_rfs: m.n_rfs_total(),
-        update_us,
-        predict_us,
-    })
+    se / n / var
 }
 
 /// The standard cross test with one seed: 500 training points, `epochs` epochs (20 in the

@@ -117,6 +117,22 @@ impl RfView<'_> {
         })
     }
 
+    /// Learning rates `α` of the metric's factor `M` (`D = MᵀM`, `M` upper-triangular), one
+    /// per element, `nk × nk` over the kernel dimensions: the upper triangle (only the
+    /// diagonal with `diag_only`), zeros elsewhere; in the normalised input space. A new RF
+    /// starts from `init_alpha` (or its template's rates); meta learning (`meta`) adapts them,
+    /// and a step that would change an element by more than a tenth of `max |M|` halves its
+    /// rate instead.
+    pub fn learning_rates(&self) -> DMatrix<f64> {
+        let nk = self.model.p.nk();
+        let alpha = &self.rf.alpha;
+        DMatrix::from_fn(nk, nk, |r, c| match self.model.p.cfg.diag_only {
+            true if r == c => alpha[r],
+            false if c >= r => alpha[r * nk + c],
+            _ => 0.0,
+        })
+    }
+
     /// The local linear model of local output `o` (0 in per-output mode; the output index
     /// with shared RFs).
     pub fn local_model(&self, o: usize) -> Option<LocalModel> {

@@ -232,3 +232,62 @@ fn jacobian_matches_finite_differences_and_conf_is_positive() {
         }
     }
 }
+
+#[test]
+fn learning_rates_follow_the_layout_and_meta_learning() {
+    use lwpr::datasets::{cross_config, cross_train};
+    let mut rng = ChaCha8Rng::seed_from_u64(3);
+    let data = cross_train(&mut rng, 400);
+    // (meta, diag_only): the rates after training and their initial value.
+    for (meta, diag) in [(true, false), (false, false), (true, true)] {
+        let cfg = LwprConfig {
+            meta,
+            diag_only: diag,
+            ..cross_config()
+        };
+        let a0 = cfg.init_alpha;
+        let mut m = Lwpr::new(2, 1, &cfg).unwrap();
+        m.update(&data.x[0], &[data.y[0]]).unwrap();
+        let fresh = m.rfs(0).unwrap().next().unwrap().learning_rates();
+        let upper = |r: usize, c: usize| if diag { r == c } else { c >= r };
+        for r in 0..2 {
+            for c in 0..2 {
+                let want = if upper(r, c) { a0 } else { 0.0 };
+                assert_eq!(fresh[(r, c)], want, "fresh RF, ({r}, {c}), meta {meta} diag {diag}");
+            }
+        }
+        for _ in 0..3 {
+            for (x, &y) in data.x.iter().zip(&data.y) {
+                m.update(x, &[y]).unwrap();
+            }
+        }
+        // Elements whose rate differs from `init_alpha` in some RF.
+        let mut changed = [[false; 2]; 2];
+        for rf in m.rfs(0).unwrap() {
+            let a = rf.learning_rates();
+            for r in 0..2 {
+                for c in 0..2 {
+                    let v = a[(r, c)];
+                    if !upper(r, c) {
+                        assert_eq!(v, 0.0);
+                        continue;
+                    }
+                    assert!(v > 0.0 && v.is_finite(), "({r}, {c}): {v}");
+                    changed[r][c] |= v != a0;
+                    if !meta {
+                        // Without meta learning a rate only halves: a0 / 2^k.
+                        let k = (a0 / v).log2();
+                        assert!(k >= 0.0 && (k - k.round()).abs() < 1e-12, "({r}, {c}): {v}");
+                    }
+                }
+            }
+        }
+        for r in 0..2 {
+            for c in 0..2 {
+                // Meta learning adapts every free element somewhere.
+                let want = meta && upper(r, c);
+                assert!(!want || changed[r][c], "({r}, {c}) never adapted, diag {diag}");
+            }
+        }
+    }
+}
