@@ -123,7 +123,7 @@ impl Lwpr {
             // SAFETY: the CPU supports AVX2 (checked at run time).
             return unsafe { self.predict_avx2(x, want, strict) };
         }
-        self.predict_dims(x, want, strict)
+        self.predict_kind(x, want, strict)
     }
 
     /// [`Lwpr::predict_impl_mode`] compiled with AVX2 (same results, see `crate::simd`).
@@ -135,32 +135,48 @@ impl Lwpr {
         want: Want,
         strict: bool,
     ) -> Result<Support, LwprError> {
-        self.predict_dims(x, want, strict)
+        self.predict_kind(x, want, strict)
+    }
+
+    /// Plain predictions get a copy of their own, without the branches (and the registers)
+    /// of the confidence and Jacobian code.
+    #[inline(always)]
+    fn predict_kind(&mut self, x: &[f64], want: Want, strict: bool) -> Result<Support, LwprError> {
+        match want {
+            Want::Plain => self.predict_dims::<true>(x, want, strict),
+            _ => self.predict_dims::<false>(x, want, strict),
+        }
     }
 
     /// Small input spaces get a copy with constant dimensions (as the update does).
     #[inline(always)]
-    fn predict_dims(&mut self, x: &[f64], want: Want, strict: bool) -> Result<Support, LwprError> {
-        match (self.p.nk(), self.p.nr()) {
-            (1, 1) => self.predict_core::<1, 1>(x, want, strict),
-            (2, 2) => self.predict_core::<2, 2>(x, want, strict),
-            // The learned controllers' model shapes, as in the update.
-            (14, 21) => self.predict_core::<14, 21>(x, want, strict),
-            (7, 21) => self.predict_core::<7, 21>(x, want, strict),
-            (6, 9) => self.predict_core::<6, 9>(x, want, strict),
-            (3, 9) => self.predict_core::<3, 9>(x, want, strict),
-            (21, 21) => self.predict_core::<21, 21>(x, want, strict),
-            _ => self.predict_core::<0, 0>(x, want, strict),
-        }
-    }
-
-    #[inline(always)]
-    fn predict_core<const NK: usize, const NR: usize>(
+    fn predict_dims<const PLAIN: bool>(
         &mut self,
         x: &[f64],
         want: Want,
         strict: bool,
     ) -> Result<Support, LwprError> {
+        match (self.p.nk(), self.p.nr()) {
+            (1, 1) => self.predict_core::<1, 1, PLAIN>(x, want, strict),
+            (2, 2) => self.predict_core::<2, 2, PLAIN>(x, want, strict),
+            // The learned controllers' model shapes, as in the update.
+            (14, 21) => self.predict_core::<14, 21, PLAIN>(x, want, strict),
+            (7, 21) => self.predict_core::<7, 21, PLAIN>(x, want, strict),
+            (6, 9) => self.predict_core::<6, 9, PLAIN>(x, want, strict),
+            (3, 9) => self.predict_core::<3, 9, PLAIN>(x, want, strict),
+            (21, 21) => self.predict_core::<21, 21, PLAIN>(x, want, strict),
+            _ => self.predict_core::<0, 0, PLAIN>(x, want, strict),
+        }
+    }
+
+    #[inline(always)]
+    fn predict_core<const NK: usize, const NR: usize, const PLAIN: bool>(
+        &mut self,
+        x: &[f64],
+        want: Want,
+        strict: bool,
+    ) -> Result<Support, LwprError> {
+        let want = if PLAIN { Want::Plain } else { want };
         let Lwpr { p, subs, ws, .. } = self;
         ws.load_x(p, x);
         let nk = if NK > 0 { NK } else { p.nk() };

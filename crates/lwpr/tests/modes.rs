@@ -253,7 +253,11 @@ fn learning_rates_follow_the_layout_and_meta_learning() {
         for r in 0..2 {
             for c in 0..2 {
                 let want = if upper(r, c) { a0 } else { 0.0 };
-                assert_eq!(fresh[(r, c)], want, "fresh RF, ({r}, {c}), meta {meta} diag {diag}");
+                assert_eq!(
+                    fresh[(r, c)],
+                    want,
+                    "fresh RF, ({r}, {c}), meta {meta} diag {diag}"
+                );
             }
         }
         for _ in 0..3 {
@@ -286,7 +290,10 @@ fn learning_rates_follow_the_layout_and_meta_learning() {
             for c in 0..2 {
                 // Meta learning adapts every free element somewhere.
                 let want = meta && upper(r, c);
-                assert!(!want || changed[r][c], "({r}, {c}) never adapted, diag {diag}");
+                assert!(
+                    !want || changed[r][c],
+                    "({r}, {c}) never adapted, diag {diag}"
+                );
             }
         }
     }
