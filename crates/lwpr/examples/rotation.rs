@@ -13,10 +13,12 @@
 //!   meta learning raised above 2 · `init_alpha`, median over the RFs; `rate_gain_max`: per RF
 //!   the largest `α / init_alpha`, median over the RFs.
 //!
-//! `cargo run -p lwpr --release --example rotation -- [--seeds N] [--epochs E]` (10 seeds,
-//! 25 epochs: the standard test).
+//! `cargo run -p lwpr --release --example rotation -- [--seeds N] [--epochs E] [--no-meta]`
+//! (10 seeds, 25 epochs: the standard test; `--no-meta` switches meta learning off, the
+//! rates then stay at `init_alpha` but for halvings).
 
 use lwpr::datasets::{cross21_config, cross21_data, fit, test_nmse, Embedding};
+use lwpr::LwprConfig;
 use nalgebra::DMatrix;
 
 /// The median of `v` (NaN when empty).
@@ -46,7 +48,14 @@ fn main() {
             .unwrap_or_else(|_| panic!("{k}: not a non-negative integer: {v}"))
     };
     let (seeds, epochs) = (get("--seeds", 10), get("--epochs", 25));
-    let cfg = cross21_config();
+    assert!(
+        seeds > 0 && epochs > 0,
+        "--seeds and --epochs must be at least 1"
+    );
+    let cfg = LwprConfig {
+        meta: !args.iter().any(|a| a == "--no-meta"),
+        ..cross21_config()
+    };
     for (name, e) in [
         ("rotation", Embedding::Rotation),
         ("identity", Embedding::Identity),
@@ -55,7 +64,7 @@ fn main() {
         for seed in 0..seeds as u64 {
             let (train, test, emb) = cross21_data(seed, e);
             let (mut m, _) = fit(&cfg, &train, epochs, seed).expect("the standard config fits");
-            let nmse = test_nmse(&mut m, &test);
+            let nmse = test_nmse(&mut m, &test).expect("test inputs fit the model");
             let plane = emb.columns(0, 2).into_owned();
             let (mut lo, mut hi, mut off, mut grown, mut gain) =
                 (vec![], vec![], vec![], vec![], vec![]);
@@ -83,7 +92,7 @@ fn main() {
             ];
             println!(
                 "{{\"embedding\":\"{name}\",\"seed\":{seed},\"nmse\":{:.4},\"n_rfs\":{},\
-                 \"d_plane_lo\":{:.1},\"d_plane_hi\":{:.1},\"d_off_plane\":{:.2},\
+                 \"d_plane_lo\":{:.1},\"d_plane_hi\":{:.1},\"d_off_plane\":{:.4},\
                  \"rates_grown\":{},\"rate_gain_max\":{:.2}}}",
                 row[0], row[1], row[2], row[3], row[4], row[5], row[6]
             );
@@ -93,7 +102,7 @@ fn main() {
         println!(
             "{{\"embedding\":\"{name}\",\"seeds\":{seeds},\"epochs\":{epochs},\"median\":{{\
              \"nmse\":{:.4},\"n_rfs\":{},\"d_plane_lo\":{:.1},\"d_plane_hi\":{:.1},\
-             \"d_off_plane\":{:.2},\"rates_grown\":{},\"rate_gain_max\":{:.2}}}}}",
+             \"d_off_plane\":{:.4},\"rates_grown\":{},\"rate_gain_max\":{:.2}}}}}",
             med(0),
             med(1),
             med(2),

@@ -14,7 +14,7 @@ use crate::scratch::quad_full_n;
 /// Calls `f(i, q_i)` for every RF `i` in order, with `q_i = ‖M_i (x − c_i)‖²` as
 /// [`crate::scratch::quad`] computes it (bit for bit). `centers` holds 2 values per RF,
 /// `ms` the 4 of each RF's row-major `M` (upper-triangular); `x` is the kernel input.
-/// `AVX` may be set only where AVX2 is enabled (the `*_avx2` entry points).
+/// `AVX` may be set only where the CPU has AVX2 (checked at run time by the caller).
 #[inline(always)]
 pub(crate) fn for_each_q<const AVX: bool>(
     centers: &[f64],
@@ -28,9 +28,12 @@ pub(crate) fn for_each_q<const AVX: bool>(
     #[cfg(target_arch = "x86_64")]
     if AVX {
         while i + 4 <= n {
-            // SAFETY: `AVX` is set only in code compiled with AVX2 enabled, on a CPU that has
-            // it; the slices hold the 8 centre and 16 metric values read.
+            // SAFETY: callers set `AVX` only after the run-time check that the CPU has AVX2
+            // (`simd::has_avx2`: the update's AVX2 entry point, the unit test); the slices
+            // hold the 8 centre and 16 metric values read.
             let q = unsafe { block4(&centers[2 * i..2 * i + 8], &ms[4 * i..4 * i + 16], x) };
+            #[cfg(test)]
+            crate::tests::activation::BLOCKS.with(|b| b.set(b.get() + 1));
             for (j, &qj) in q.iter().enumerate() {
                 f(i + j, qj);
             }

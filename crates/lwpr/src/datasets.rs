@@ -155,7 +155,7 @@ pub fn run(
     }
     let (mut m, update_us) = fit(cfg, train, epochs, seed)?;
     let t1 = Instant::now();
-    let nmse = test_nmse(&mut m, test);
+    let nmse = test_nmse(&mut m, test)?;
     let predict_us = t1.elapsed().as_secs_f64() * 1e6 / test.x.len() as f64;
     Ok(RunResult {
         nmse,
@@ -166,9 +166,9 @@ pub fn run(
 }
 
 /// The training of [`run`]: the model after `epochs` epochs on `train` (each in a fresh order
-/// from a generator seeded with `seed`) and the wall-clock µs per update (mean). Fails when
-/// `epochs` is 0, `train` is empty, the config is invalid for the data or a sample is not
-/// finite.
+/// from a generator seeded with `seed ^ 0x5eed`, so that the order is not drawn from the
+/// stream that drew the data) and the wall-clock µs per update (mean). Fails when `epochs` is
+/// 0, `train` is empty, the config is invalid for the data or a sample is not finite.
 pub fn fit(
     cfg: &LwprConfig,
     train: &Data,
@@ -177,7 +177,7 @@ pub fn fit(
 ) -> Result<(Lwpr, f64), LwprError> {
     if epochs == 0 || train.x.is_empty() {
         return Err(LwprError::Config(format!(
-            "a benchmark run needs at least one epoch and samples to train on \
+            "training needs at least one epoch and samples to train on \
              (epochs {epochs}, {} training samples)",
             train.x.len()
         )));
@@ -198,21 +198,23 @@ pub fn fit(
 }
 
 /// Test MSE of `m` on `test` over the variance of its targets; a point without an active RF
-/// predicts 0. NaN for an empty `test`.
-pub fn test_nmse(m: &mut Lwpr, test: &Data) -> f64 {
+/// predicts 0 (as the reference library does). NaN for an empty `test`. Fails when a test
+/// input does not fit the model (wrong length, not finite).
+pub fn test_nmse(m: &mut Lwpr, test: &Data) -> Result<f64, LwprError> {
     let mut y = [0.0];
     let mut se = 0.0;
     for (x, &t) in test.x.iter().zip(&test.y) {
         let p = match m.predict(x, &mut y) {
             Ok(_) => y[0],
-            Err(_) => 0.0,
+            Err(LwprError::NoActiveRf { .. }) => 0.0,
+            Err(e) => return Err(e),
         };
         se += (p - t) * (p - t);
     }
     let n = test.y.len() as f64;
     let mean = test.y.iter().sum::<f64>() / n;
     let var = test.y.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / n;
-    se / n / var
+    Ok(se / n / var)
 }
 
 /// The standard cross test with one seed: 500 training points, `epochs` epochs (20 in the

@@ -231,7 +231,7 @@ fn update_sub_impl<const NK: usize, const NR: usize, const AVX: bool>(
     let qb = ws.qb_update;
     let mut top = Top2::new();
     ws.active.clear();
-    if NK == 2 && !diag {
+    if NK == 2 && !diag && !crate::rf_update::general_only() {
         // Four RFs at a time (the 2-D cross test's shape); the same `q`s.
         let active = &mut ws.active;
         crate::activation::for_each_q::<AVX>(&sub.centers, &sub.ms, &ws.xk, |i, q| {

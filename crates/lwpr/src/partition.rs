@@ -121,7 +121,7 @@ impl RfView<'_> {
     /// per element, `nk × nk` over the kernel dimensions: the upper triangle (only the
     /// diagonal with `diag_only`), zeros elsewhere; in the normalised input space. A new RF
     /// starts from `init_alpha` (or its template's rates); meta learning (`meta`) adapts them,
-    /// and a step that would change an element by more than a tenth of `max |M|` halves its
+    /// and a step that would decrease an element by more than a tenth of `max |M|` halves its
     /// rate instead.
     pub fn learning_rates(&self) -> DMatrix<f64> {
         let nk = self.model.p.nk();

@@ -286,6 +286,19 @@ fn learning_rates_follow_the_layout_and_meta_learning() {
                 }
             }
         }
+        // A new RF far from the data (no template): its own rates, all `init_alpha`.
+        m.update(&[5.0, 5.0], &[0.0]).unwrap();
+        let far = m
+            .rfs(0)
+            .unwrap()
+            .find(|rf| rf.center() == [5.0, 5.0])
+            .unwrap();
+        let a = far.learning_rates();
+        for r in 0..2 {
+            for c in 0..2 {
+                assert_eq!(a[(r, c)], if upper(r, c) { a0 } else { 0.0 }, "new RF");
+            }
+        }
         for r in 0..2 {
             for c in 0..2 {
                 // Meta learning adapts every free element somewhere.
@@ -296,5 +309,45 @@ fn learning_rates_follow_the_layout_and_meta_learning() {
                 );
             }
         }
+    }
+}
+
+/// With a third input that is always 0, nothing moves the rates of the elements of `M`
+/// between it and the others (their gradients are exactly 0): they stay at `init_alpha` (up
+/// to `e^{ln α}` rounding), while those of the data's two inputs adapt.
+#[test]
+fn learning_rates_adapt_only_where_the_data_varies() {
+    use lwpr::datasets::{cross_config, cross_train};
+    let mut rng = ChaCha8Rng::seed_from_u64(4);
+    let data = cross_train(&mut rng, 400);
+    let cfg = cross_config();
+    let a0 = cfg.init_alpha;
+    let mut m = Lwpr::new(3, 1, &cfg).unwrap();
+    for _ in 0..3 {
+        for (x, &y) in data.x.iter().zip(&data.y) {
+            m.update(&[x[0], x[1], 0.0], &[y]).unwrap();
+        }
+    }
+    let mut adapted = [[false; 3]; 3];
+    for rf in m.rfs(0).unwrap() {
+        let a = rf.learning_rates();
+        for (r, c) in [(0, 2), (1, 2)] {
+            assert!(
+                (a[(r, c)] / a0 - 1.0).abs() < 1e-9,
+                "({r}, {c}): {}",
+                a[(r, c)]
+            );
+        }
+        for r in 0..3 {
+            for c in 0..r {
+                assert_eq!(a[(r, c)], 0.0, "lower element ({r}, {c})");
+            }
+            for c in r..3 {
+                adapted[r][c] |= (a[(r, c)] / a0 - 1.0).abs() > 1e-3;
+            }
+        }
+    }
+    for (r, c) in [(0, 0), (0, 1), (1, 1)] {
+        assert!(adapted[r][c], "({r}, {c}) never adapted");
     }
 }

@@ -1,7 +1,7 @@
 //! Unit tests of internals: derivatives against finite differences, PLS exactness, the
 //! metric steps against each other.
 
-mod activation;
+pub(crate) mod activation;
 pub(crate) mod const_r;
 mod derivatives;
 mod fused;

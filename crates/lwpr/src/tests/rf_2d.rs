@@ -1,13 +1,15 @@
-//! The 2-D steps with every dimension a constant (the PLS step `rf_update_2d::regression_2d`,
-//! the metric step `metric_2d::step_2d`) against the general path, bit for bit: whole saved models and predictions after training, for every
-//! configuration the 2-D path takes (meta learning on and off, metric learning off, Gaussian
-//! and BiSquare kernels, shared RFs with one and with two outputs, two outputs with an RF list
-//! each, a kernel
-//! and a regression on different input pairs, normalised inputs, fast forgetting), and for
-//! RFs whose two directions have seen different amounts of data (as a loaded model may have).
+//! The 2-D code with every dimension a constant (the PLS step `rf_update_2d::regression_2d`,
+//! the metric step `metric_2d::step_2d`, the activation pass `activation::for_each_q`) against
+//! the general path, bit for bit: whole saved models and predictions after training, for
+//! every configuration the 2-D path takes (meta learning on and off, metric learning off,
+//! Gaussian and BiSquare kernels, shared RFs with one and with two outputs, two outputs with
+//! an RF list each, a kernel and a regression on different input pairs, pruning, normalised
+//! inputs, fast forgetting), and for RFs whose two directions have seen different amounts of
+//! data (as a loaded model may have).
 //!
-//! The general path here is `output_step::<0>`: `FORCE_DYNAMIC` switches off both shortcuts
-//! (the constant two directions are compared with it in `const_r.rs`).
+//! The general path here is `output_step::<0>` and `scratch::quad` per RF: `FORCE_DYNAMIC`
+//! switches off all three shortcuts (the constant two directions are compared with it in
+//! `const_r.rs`).
 
 use super::const_r::FORCE_DYNAMIC;
 use crate::config::{Kernel, LwprConfig, Norm};
@@ -24,8 +26,8 @@ thread_local! {
 }
 
 /// What a run gives: the saved model, its predictions on a fixed set of inputs, and the
-/// counts of 2-D updates and halved steps.
-type Run = (Vec<u8>, Vec<u64>, u64, u64);
+/// counts of 2-D updates, halved steps and pruned RFs.
+type Run = (Vec<u8>, Vec<u64>, u64, u64, usize);
 
 /// Trains `m` on `n` samples (seed `seed`) with the 2-D path on or off. Targets: the cross
 /// function of inputs 0 and 1 plus a linear term in the last input, with noise; a second
@@ -36,6 +38,7 @@ fn train(general: bool, m: &mut Lwpr, seed: u64, n: usize) -> Run {
     TAKEN.with(|c| c.set(0));
     HALVED.with(|c| c.set(0));
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let mut pruned = 0;
     let f = |x: &[f64]| {
         let (a, b) = (x[0], x[1]);
         let cross = (-10.0 * a * a)
@@ -48,7 +51,7 @@ fn train(general: bool, m: &mut Lwpr, seed: u64, n: usize) -> Run {
         let x: Vec<f64> = (0..n_in).map(|_| rng.random_range(-1.0..1.0)).collect();
         let y0 = f(&x) + 0.1 * rng.random_range(-1.0..1.0);
         let y = [y0, x[0] - y0];
-        m.update(&x, &y[..n_out]).unwrap();
+        pruned += m.update(&x, &y[..n_out]).unwrap().pruned;
     }
     let mut preds = Vec::new();
     for k in 0..200 {
@@ -62,17 +65,18 @@ fn train(general: bool, m: &mut Lwpr, seed: u64, n: usize) -> Run {
     }
     FORCE_DYNAMIC.with(|f| f.set(false));
     let counts = (TAKEN.with(|c| c.get()), HALVED.with(|c| c.get()));
-    (m.to_bytes(), preds, counts.0, counts.1)
+    (m.to_bytes(), preds, counts.0, counts.1, pruned)
 }
 
-/// Asserts that the two paths agree and that the 2-D one ran; returns the halved steps.
-fn compare(name: &str, fast: Run, general: Run) -> u64 {
+/// Asserts that the two paths agree and that the 2-D one ran; returns the halved steps and
+/// the pruned RFs.
+fn compare(name: &str, fast: Run, general: Run) -> (u64, usize) {
     assert!(fast.2 > 5_000, "{name}: the 2-D path ran {} times", fast.2);
     assert_eq!(general.2, 0, "{name}: the 2-D path ran with the switch on");
     assert!(fast.1.len() > 150, "{name}: too few predictions");
     assert!(fast.0 == general.0, "{name}: the saved models differ");
     assert_eq!(fast.1, general.1, "{name}: the predictions differ");
-    fast.3
+    (fast.3, fast.4)
 }
 
 /// The cross test's config (full metric, meta learning).
@@ -143,6 +147,16 @@ fn the_2d_update_matches_the_general_path() {
             },
         ),
         (
+            // Pruning: the two nearest RFs of the activation pass decide which one goes.
+            "pruning",
+            2,
+            1,
+            LwprConfig {
+                w_prune: 0.5,
+                ..b.clone()
+            },
+        ),
+        (
             "normalised inputs, fast forgetting",
             2,
             1,
@@ -177,7 +191,12 @@ fn the_2d_update_matches_the_general_path() {
                 3000,
             )
         };
-        halved += compare(name, run(false), run(true));
+        let (h, pruned) = compare(name, run(false), run(true));
+        halved += h;
+        assert!(
+            name != "pruning" || pruned > 10,
+            "{name}: {pruned} RFs pruned, too few to test the choice"
+        );
     }
     assert!(
         halved > 0,
