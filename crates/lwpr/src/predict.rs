@@ -118,59 +118,69 @@ impl Lwpr {
         want: Want,
         strict: bool,
     ) -> Result<Support, LwprError> {
+        // Plain predictions get a copy of their own, without the branches (and the registers)
+        // of the confidence and Jacobian code; each copy is a function of its own.
         #[cfg(target_arch = "x86_64")]
         if crate::simd::has_avx2() {
             // SAFETY: the CPU supports AVX2 (checked at run time).
-            return unsafe { self.predict_avx2(x, want, strict) };
+            return unsafe {
+                match want {
+                    Want::Plain => self.predict_plain_avx2(x, strict),
+                    _ => self.predict_avx2(x, want, strict),
+                }
+            };
         }
-        self.predict_kind(x, want, strict)
+        match want {
+            Want::Plain => self.predict_dims::<true, false>(x, want, strict),
+            _ => self.predict_dims::<false, false>(x, want, strict),
+        }
     }
 
-    /// [`Lwpr::predict_impl_mode`] compiled with AVX2 (same results, see `crate::simd`).
+    /// [`Lwpr::predict_impl_mode`] for plain predictions, compiled with AVX2 (same results,
+    /// see `crate::simd`).
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
+    #[inline(never)]
+    unsafe fn predict_plain_avx2(&mut self, x: &[f64], strict: bool) -> Result<Support, LwprError> {
+        self.predict_dims::<true, true>(x, Want::Plain, strict)
+    }
+
+    /// [`Lwpr::predict_impl_mode`] with confidence or Jacobian, compiled with AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    #[inline(never)]
     unsafe fn predict_avx2(
         &mut self,
         x: &[f64],
         want: Want,
         strict: bool,
     ) -> Result<Support, LwprError> {
-        self.predict_kind(x, want, strict)
-    }
-
-    /// Plain predictions get a copy of their own, without the branches (and the registers)
-    /// of the confidence and Jacobian code.
-    #[inline(always)]
-    fn predict_kind(&mut self, x: &[f64], want: Want, strict: bool) -> Result<Support, LwprError> {
-        match want {
-            Want::Plain => self.predict_dims::<true>(x, want, strict),
-            _ => self.predict_dims::<false>(x, want, strict),
-        }
+        self.predict_dims::<false, true>(x, want, strict)
     }
 
     /// Small input spaces get a copy with constant dimensions (as the update does).
     #[inline(always)]
-    fn predict_dims<const PLAIN: bool>(
+    fn predict_dims<const PLAIN: bool, const AVX: bool>(
         &mut self,
         x: &[f64],
         want: Want,
         strict: bool,
     ) -> Result<Support, LwprError> {
         match (self.p.nk(), self.p.nr()) {
-            (1, 1) => self.predict_core::<1, 1, PLAIN>(x, want, strict),
-            (2, 2) => self.predict_core::<2, 2, PLAIN>(x, want, strict),
+            (1, 1) => self.predict_core::<1, 1, PLAIN, AVX>(x, want, strict),
+            (2, 2) => self.predict_core::<2, 2, PLAIN, AVX>(x, want, strict),
             // The learned controllers' model shapes, as in the update.
-            (14, 21) => self.predict_core::<14, 21, PLAIN>(x, want, strict),
-            (7, 21) => self.predict_core::<7, 21, PLAIN>(x, want, strict),
-            (6, 9) => self.predict_core::<6, 9, PLAIN>(x, want, strict),
-            (3, 9) => self.predict_core::<3, 9, PLAIN>(x, want, strict),
-            (21, 21) => self.predict_core::<21, 21, PLAIN>(x, want, strict),
-            _ => self.predict_core::<0, 0, PLAIN>(x, want, strict),
+            (14, 21) => self.predict_core::<14, 21, PLAIN, AVX>(x, want, strict),
+            (7, 21) => self.predict_core::<7, 21, PLAIN, AVX>(x, want, strict),
+            (6, 9) => self.predict_core::<6, 9, PLAIN, AVX>(x, want, strict),
+            (3, 9) => self.predict_core::<3, 9, PLAIN, AVX>(x, want, strict),
+            (21, 21) => self.predict_core::<21, 21, PLAIN, AVX>(x, want, strict),
+            _ => self.predict_core::<0, 0, PLAIN, AVX>(x, want, strict),
         }
     }
 
     #[inline(always)]
-    fn predict_core<const NK: usize, const NR: usize, const PLAIN: bool>(
+    fn predict_core<const NK: usize, const NR: usize, const PLAIN: bool, const AVX: bool>(
         &mut self,
         x: &[f64],
         want: Want,
@@ -207,77 +217,109 @@ impl Lwpr {
             } = sub;
             let kern = if diag { &*ds } else { &*ms };
             let mut sum_w = 0.0;
-            let rf_chunks = centers.chunks_exact(nk).zip(kern.chunks_exact(ml));
-            for (i, (rf, (c, md))) in rfs.iter_mut().zip(rf_chunks).enumerate() {
-                if !rf.trustworthy {
-                    continue;
-                }
-                let q = quad(diag, c, md, &ws.xk[..nk], &mut ws.met.dx, qb);
-                if q >= qb {
-                    continue;
-                }
-                let (w, dwdq, _) = p.kernel(q);
-                if w <= cutoff {
-                    continue;
-                }
-                sum_w += w;
-                let xc = &mut ws.pls.xmz[..nr];
-                let (xr, mean_x) = (&ws.xr[..nr], &rf.mean_x[..nr]);
-                for k in 0..nr {
-                    xc[k] = xr[k] - mean_x[k];
-                }
-                if want == Want::Jac {
-                    // ∂w/∂x_K = 2 (dw/dq) D (x − c).
-                    let dd = &ds[i * ml..(i + 1) * ml];
-                    for k in 0..nk {
-                        let dxk = ws.xk[k] - c[k];
-                        ws.ddx[k] = if diag { 2.0 * dwdq * dd[k] * dxk } else { 0.0 };
-                    }
-                    if !diag {
-                        for k in 0..nk {
-                            ws.met.dx[k] = ws.xk[k] - c[k];
-                        }
-                        for k in 0..nk {
-                            let row = &dd[k * nk..(k + 1) * nk];
-                            ws.ddx[k] = 2.0 * dwdq * dot(row, &ws.met.dx);
+            if PLAIN && NK == 2 && !diag && !crate::rf_update::general_only() {
+                // The 2-D cross test's shape: the active RFs first, their distances four at a
+                // time (the same bits), then their sums as in the loop below (`Σ w ŷ` only: a
+                // plain prediction needs no confidence).
+                ws.active.clear();
+                let active = &mut ws.active;
+                let xk = [ws.xk[0], ws.xk[1]];
+                crate::activation::for_each_q::<AVX>(centers, ms, &xk, |i, q| {
+                    if rfs[i].trustworthy && q < qb {
+                        let w = p.kernel(q).0;
+                        if w > cutoff {
+                            active.push((i, w, 0.0, 0.0));
                         }
                     }
-                    for k in 0..nk {
-                        ws.dwdx[k] += ws.ddx[k];
+                });
+                for a in 0..ws.active.len() {
+                    let (i, w, _, _) = ws.active[a];
+                    let rf = &mut rfs[i];
+                    sum_w += w;
+                    let xc = &mut ws.pls.xmz[..nr];
+                    let (xr, mean_x) = (&ws.xr[..nr], &rf.mean_x[..nr]);
+                    for k in 0..nr {
+                        xc[k] = xr[k] - mean_x[k];
                     }
-                }
-                if want != Want::Conf {
-                    for pls in rf.outs.iter_mut() {
+                    for (lo, pls) in rf.outs.iter_mut().enumerate() {
                         pls.refresh_slope(nr);
+                        let yk = pls.beta0 + dot(&pls.slope[..nr], xc);
+                        ws.yacc[o0 + lo] += w * yk;
                     }
                 }
-                for (lo, pls) in rf.outs.iter().enumerate() {
-                    let o = o0 + lo;
-                    let yk = if want == Want::Conf {
-                        let np = pls.n_pred(nr).max(1);
-                        let (xu, sv) = (&mut ws.pls.xu, &mut ws.pls.s);
-                        project(&pls.u, &pls.p, nr, np, xc, xu, sv);
-                        let mut yk = pls.beta0;
-                        let mut ss = 0.0;
-                        for j in 0..np {
-                            yk += pls.beta[j] * sv[j];
-                            ss += sv[j] * sv[j] / pls.ss_s2[j];
-                        }
-                        let gamma = pls.sum_e_cv2[np - 1] / (pls.sum_w[np - 1] - pls.ssp);
-                        ws.wconf[o] += w * gamma * (1.0 + w * ss);
-                        yk
-                    } else {
-                        pls.beta0 + dot(&pls.slope[..nr], xc)
-                    };
-                    ws.yacc[o] += w * yk;
-                    ws.wyy[o] += w * yk * yk;
+            } else {
+                let rf_chunks = centers.chunks_exact(nk).zip(kern.chunks_exact(ml));
+                for (i, (rf, (c, md))) in rfs.iter_mut().zip(rf_chunks).enumerate() {
+                    if !rf.trustworthy {
+                        continue;
+                    }
+                    let q = quad(diag, c, md, &ws.xk[..nk], &mut ws.met.dx, qb);
+                    if q >= qb {
+                        continue;
+                    }
+                    let (w, dwdq, _) = p.kernel(q);
+                    if w <= cutoff {
+                        continue;
+                    }
+                    sum_w += w;
+                    let xc = &mut ws.pls.xmz[..nr];
+                    let (xr, mean_x) = (&ws.xr[..nr], &rf.mean_x[..nr]);
+                    for k in 0..nr {
+                        xc[k] = xr[k] - mean_x[k];
+                    }
                     if want == Want::Jac {
-                        let row = &mut ws.jac[o * n_in..(o + 1) * n_in];
-                        for (k, &d) in p.rdims.iter().enumerate() {
-                            row[d] += w * pls.slope[k];
+                        // ∂w/∂x_K = 2 (dw/dq) D (x − c).
+                        let dd = &ds[i * ml..(i + 1) * ml];
+                        for k in 0..nk {
+                            let dxk = ws.xk[k] - c[k];
+                            ws.ddx[k] = if diag { 2.0 * dwdq * dd[k] * dxk } else { 0.0 };
                         }
-                        for (k, &d) in p.kdims.iter().enumerate() {
-                            row[d] += yk * ws.ddx[k];
+                        if !diag {
+                            for k in 0..nk {
+                                ws.met.dx[k] = ws.xk[k] - c[k];
+                            }
+                            for k in 0..nk {
+                                let row = &dd[k * nk..(k + 1) * nk];
+                                ws.ddx[k] = 2.0 * dwdq * dot(row, &ws.met.dx);
+                            }
+                        }
+                        for k in 0..nk {
+                            ws.dwdx[k] += ws.ddx[k];
+                        }
+                    }
+                    if want != Want::Conf {
+                        for pls in rf.outs.iter_mut() {
+                            pls.refresh_slope(nr);
+                        }
+                    }
+                    for (lo, pls) in rf.outs.iter().enumerate() {
+                        let o = o0 + lo;
+                        let yk = if want == Want::Conf {
+                            let np = pls.n_pred(nr).max(1);
+                            let (xu, sv) = (&mut ws.pls.xu, &mut ws.pls.s);
+                            project(&pls.u, &pls.p, nr, np, xc, xu, sv);
+                            let mut yk = pls.beta0;
+                            let mut ss = 0.0;
+                            for j in 0..np {
+                                yk += pls.beta[j] * sv[j];
+                                ss += sv[j] * sv[j] / pls.ss_s2[j];
+                            }
+                            let gamma = pls.sum_e_cv2[np - 1] / (pls.sum_w[np - 1] - pls.ssp);
+                            ws.wconf[o] += w * gamma * (1.0 + w * ss);
+                            yk
+                        } else {
+                            pls.beta0 + dot(&pls.slope[..nr], xc)
+                        };
+                        ws.yacc[o] += w * yk;
+                        ws.wyy[o] += w * yk * yk;
+                        if want == Want::Jac {
+                            let row = &mut ws.jac[o * n_in..(o + 1) * n_in];
+                            for (k, &d) in p.rdims.iter().enumerate() {
+                                row[d] += w * pls.slope[k];
+                            }
+                            for (k, &d) in p.kdims.iter().enumerate() {
+                                row[d] += yk * ws.ddx[k];
+                            }
                         }
                     }
                 }

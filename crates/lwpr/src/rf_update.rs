@@ -100,8 +100,8 @@ fn force_dynamic() -> bool {
     false
 }
 
-/// Tests can switch the 2-D metric step and the 2-D activation pass off too (the same
-/// switch, not counted); always `false` outside tests.
+/// Tests can switch the 2-D metric step, the 2-D activation pass and the 2-D plain prediction
+/// off too (the same switch, not counted); always `false` outside tests.
 #[cfg(test)]
 pub(crate) fn general_only() -> bool {
     crate::tests::const_r::FORCE_DYNAMIC.with(|f| f.get())

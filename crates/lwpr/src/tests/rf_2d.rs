@@ -1,5 +1,6 @@
 //! The 2-D code with every dimension a constant (the PLS step `rf_update_2d::regression_2d`,
-//! the metric step `metric_2d::step_2d`, the activation pass `activation::for_each_q`) against
+//! the metric step `metric_2d::step_2d`, the activation pass `activation::for_each_q` of the
+//! update and of a plain prediction) against
 //! the general path, bit for bit: whole saved models and predictions after training, for
 //! every configuration the 2-D path takes (meta learning on and off, metric learning off,
 //! Gaussian and BiSquare kernels, shared RFs with one and with two outputs, two outputs with
@@ -8,7 +9,7 @@
 //! data (as a loaded model may have).
 //!
 //! The general path here is `output_step::<0>` and `scratch::quad` per RF: `FORCE_DYNAMIC`
-//! switches off all three shortcuts (the constant two directions are compared with it in
+//! switches off all four shortcuts (the constant two directions are compared with it in
 //! `const_r.rs`).
 
 use super::const_r::FORCE_DYNAMIC;
