@@ -65,12 +65,4 @@ pub fn std_dev(rows: &[Vec<f64>], col: usize) -> f64 {
 }
 
 /// Median (mean of the middle two for an even count; NaN when empty).
-pub fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(|a, b| a.total_cmp(b));
-    let n = v.len();
-    match n {
-        0 => f64::NAN,
-        _ if n % 2 == 1 => v[n / 2],
-        _ => 0.5 * (v[n / 2 - 1] + v[n / 2]),
-    }
-}
+pub use lwpr::datasets::median;

@@ -17,23 +17,9 @@
 //! (10 seeds, 25 epochs: the standard test; `--no-meta` switches meta learning off, the
 //! rates then stay at `init_alpha` but for halvings).
 
-use lwpr::datasets::{cross21_config, cross21_data, fit, test_nmse, Embedding};
+use lwpr::datasets::{cross21_config, cross21_data, fit, median, test_nmse, Embedding};
 use lwpr::LwprConfig;
 use nalgebra::DMatrix;
-
-/// The median of `v` (NaN when empty).
-fn median(mut v: Vec<f64>) -> f64 {
-    if v.is_empty() {
-        return f64::NAN;
-    }
-    v.sort_by(|a, b| a.total_cmp(b));
-    let n = v.len();
-    if n % 2 == 1 {
-        v[n / 2]
-    } else {
-        0.5 * (v[n / 2 - 1] + v[n / 2])
-    }
-}
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();

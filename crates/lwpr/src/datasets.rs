@@ -197,6 +197,18 @@ pub fn fit(
     Ok((m, update_us))
 }
 
+/// Median of `v` (the mean of the middle two for an even count; NaN when empty), as the
+/// benchmarks report their per-seed results.
+pub fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(|a, b| a.total_cmp(b));
+    let n = v.len();
+    match n {
+        0 => f64::NAN,
+        _ if n % 2 == 1 => v[n / 2],
+        _ => 0.5 * (v[n / 2 - 1] + v[n / 2]),
+    }
+}
+
 /// Test MSE of `m` on `test` over the variance of its targets; a point without an active RF
 /// predicts 0 (as the reference library does). NaN for an empty `test`. Fails when a test
 /// input does not fit the model (wrong length, not finite).
