@@ -20,8 +20,8 @@ pub fn crba<'a>(model: &Model, data: &'a mut Data, q: &[f64]) -> Result<&'a DMat
 pub(crate) fn crba_pass(model: &Model, data: &mut Data) {
     let n = model.nq();
     let links = model.links();
-    for i in 0..n {
-        data.ic[i] = links[i].inertia;
+    for (ic, link) in data.ic.iter_mut().zip(&links[..n]) {
+        *ic = link.inertia;
     }
     // Composite inertias, tip to base.
     for i in (1..n).rev() {

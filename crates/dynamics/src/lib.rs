@@ -16,6 +16,9 @@
 //! // data.mass = M(q), data.jac = J(q), data.jdot_qd = J̇q̇, data.h = h(q, q̇), data.g = g(q)
 //! assert!((data.g[0] - 6.335692).abs() < 1e-5);
 //! ```
+// `!(x > 0.0)` is this crate's idiom for "not positive, or NaN" (inputs are validated so that
+// NaN fails): the negated comparisons are deliberate.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod aba;
 pub mod crba;

@@ -184,11 +184,13 @@ impl Model {
                 return bad(ctx("zero mass with a non-zero first moment"));
             }
             let f = &l.friction;
-            if !(f.viscous >= 0.0 && f.coulomb >= 0.0 && f.coulomb_velocity > 0.0)
-                || !(f.viscous.is_finite()
-                    && f.coulomb.is_finite()
-                    && f.coulomb_velocity.is_finite())
-            {
+            let friction_ok = f.viscous >= 0.0
+                && f.coulomb >= 0.0
+                && f.coulomb_velocity > 0.0
+                && f.viscous.is_finite()
+                && f.coulomb.is_finite()
+                && f.coulomb_velocity.is_finite();
+            if !friction_ok {
                 return bad(ctx(
                     "friction coefficients must be finite, ≥ 0 (coulomb_velocity > 0)",
                 ));

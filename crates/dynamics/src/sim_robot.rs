@@ -256,9 +256,9 @@ impl Robot for SimRobot {
         self.qd0.copy_from(&self.qd);
         // Clip to the torque limits, then add actuator noise.
         let mut saturated = false;
-        for i in 0..u.len() {
-            let clipped = u[i].clamp(-self.tau_max[i], self.tau_max[i]);
-            saturated |= clipped != u[i];
+        for (i, &ui) in u.iter().enumerate() {
+            let clipped = ui.clamp(-self.tau_max[i], self.tau_max[i]);
+            saturated |= clipped != ui;
             self.u_cmd[i] = clipped;
             self.u_applied[i] = clipped + noise(&mut self.rng, self.cfg.actuator_noise);
         }

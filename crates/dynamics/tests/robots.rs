@@ -8,9 +8,9 @@ fn sarcos7_matches_published_values() {
     let mut data = model.data();
     forward_kinematics(&model, &mut data, &[0.0; 7]).unwrap();
     let ee = [0.318443, -0.008100, -0.367257];
-    for k in 0..3 {
+    for (k, &want) in ee.iter().enumerate() {
         assert!(
-            (data.ee_pos[k] - ee[k]).abs() < 1e-6,
+            (data.ee_pos[k] - want).abs() < 1e-6,
             "ee {:?}",
             data.ee_pos
         );

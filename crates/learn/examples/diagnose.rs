@@ -112,8 +112,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             &mut xdd_ref,
         );
         let (q, qd) = (meas.q.as_slice(), meas.qd.as_slice());
-        for i in 0..n {
-            excursion = excursion.max((q[i] - reach.q_start[i]).abs());
+        for (qi, q0) in q[..n].iter().zip(&reach.q_start[..n]) {
+            excursion = excursion.max((qi - q0).abs());
         }
         let src = learner.command::<rand_chacha::ChaCha8Rng>(q, qd, &xdd_ref, None, &mut u)?;
         fb += (src == osrl_learn::CommandSource::Fallback) as usize;

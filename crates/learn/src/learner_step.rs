@@ -198,7 +198,7 @@ impl Learner {
         let per_second = (1.0 / self.dt).round().max(1.0) as u64;
         let idle = (after / self.dt).ceil() as u64;
         let now = self.stats.samples;
-        if now % per_second != 0 || now <= idle {
+        if !now.is_multiple_of(per_second) || now <= idle {
             return Ok(());
         }
         self.ws.stale.clear();
@@ -225,7 +225,7 @@ impl Learner {
             }
         }
         let fwd = self.forward.as_mut().expect("models exist");
-        if self.stats.samples % self.cfg.forward_every as u64 == 0 {
+        if self.stats.samples.is_multiple_of(self.cfg.forward_every as u64) {
             fwd.learn(q, qd, u, cur.xdd.as_slice())?;
         }
         self.prune_idle_untrained()?;
@@ -330,7 +330,7 @@ impl Learner {
         phi_d[n..2 * n].copy_from_slice(qd);
         phi_d[3 * n] = 1.0;
         let dyn_every = self.cfg.dynamics_every as u64;
-        let dyn_now = self.stats.samples % dyn_every == 0;
+        let dyn_now = self.stats.samples.is_multiple_of(dyn_every);
         for a in &self.ws.acts {
             let Some(local) = self.locals.map.get_mut(&a.id) else {
                 continue;

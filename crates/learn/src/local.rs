@@ -51,6 +51,7 @@ impl LocalControllers {
     /// A controller for a new receptive field: `θ` copied from `source` if given and trained,
     /// else from the trained controller with the nearest centre, else the constant command
     /// `u_init` (zero when empty; `d` actions, `p` features, `m` task dimensions).
+    #[allow(clippy::too_many_arguments)]
     pub fn add(
         &mut self,
         id: RfId,

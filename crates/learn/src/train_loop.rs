@@ -109,7 +109,7 @@ impl<R: Robot + ?Sized> Run<'_, R> {
     ) -> Result<()> {
         let cur = self.robot.step(&self.u)?.clone();
         self.steps += 1;
-        if self.learning && self.steps % self.cfg.learn_every as u64 == 0 {
+        if self.learning && self.steps.is_multiple_of(self.cfg.learn_every as u64) {
             match self.learner.learn(&self.prev, &cur) {
                 Ok(()) | Err(LearnError::BadMeasurement(_)) => {}
                 Err(e) => return Err(e),

@@ -138,8 +138,10 @@ fn invalid_training_settings_are_refused_with_the_field_named() {
     cfg.babble.move_time = [2.0, 1.0];
     let e = cfg.validate().unwrap_err().to_string();
     assert!(e.contains("babble.move_time"), "{e}");
-    let mut cfg = TrainConfig::default();
-    cfg.minutes = f64::NAN;
+    let cfg = TrainConfig {
+        minutes: f64::NAN,
+        ..Default::default()
+    };
     assert!(cfg.validate().unwrap_err().to_string().contains("minutes"));
 }
 
