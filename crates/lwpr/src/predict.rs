@@ -225,7 +225,8 @@ impl Lwpr {
                 let active = &mut ws.active;
                 let xk = [ws.xk[0], ws.xk[1]];
                 crate::activation::for_each_q::<AVX>(centers, ms, &xk, |i, q| {
-                    if rfs[i].trustworthy && q < qb {
+                    // The distance first: most RFs are far, and it is already in a register.
+                    if q < qb && rfs[i].trustworthy {
                         let w = p.kernel(q).0;
                         if w > cutoff {
                             active.push((i, w, 0.0, 0.0));
