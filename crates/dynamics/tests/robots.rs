@@ -9,11 +9,7 @@ fn sarcos7_matches_published_values() {
     forward_kinematics(&model, &mut data, &[0.0; 7]).unwrap();
     let ee = [0.318443, -0.008100, -0.367257];
     for (k, &want) in ee.iter().enumerate() {
-        assert!(
-            (data.ee_pos[k] - want).abs() < 1e-6,
-            "ee {:?}",
-            data.ee_pos
-        );
+        assert!((data.ee_pos[k] - want).abs() < 1e-6, "ee {:?}", data.ee_pos);
     }
     let q = model.spec().q_start.clone();
     let g = gravity(&model, &mut data, &q).unwrap().clone();

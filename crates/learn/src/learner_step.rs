@@ -225,7 +225,11 @@ impl Learner {
             }
         }
         let fwd = self.forward.as_mut().expect("models exist");
-        if self.stats.samples.is_multiple_of(self.cfg.forward_every as u64) {
+        if self
+            .stats
+            .samples
+            .is_multiple_of(self.cfg.forward_every as u64)
+        {
             fwd.learn(q, qd, u, cur.xdd.as_slice())?;
         }
         self.prune_idle_untrained()?;
