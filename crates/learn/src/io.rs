@@ -135,12 +135,11 @@ impl Learner {
         Ok(learner)
     }
 
-    /// Writes [`Learner::to_bytes`] to `path` (via a temporary file, so a crash leaves the old file).
+    /// Writes [`Learner::to_bytes`] to `path` by [`lwpr::write_atomic`] (a failure or crash
+    /// leaves any old file whole and no temporary file).
     pub fn save(&self, path: &std::path::Path) -> Result<()> {
         let bytes = self.to_bytes()?;
-        let tmp = path.with_extension("tmp");
-        std::fs::write(&tmp, &bytes)
-            .and_then(|_| std::fs::rename(&tmp, path))
+        lwpr::write_atomic(path, &bytes)
             .map_err(|e| LearnError::Load(format!("cannot write {}: {e}", path.display())))
     }
 

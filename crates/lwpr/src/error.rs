@@ -45,9 +45,16 @@ pub enum LwprError {
     /// A saved model is corrupted, truncated, of another format version, or inconsistent.
     #[error("cannot read LWPR model: {0}")]
     Format(String),
-    /// File system error while saving or loading.
+    /// File system error while saving or loading (its text is in the message, so it is not
+    /// also a `source`: error chains print it once).
     #[error("LWPR model file: {0}")]
-    Io(#[from] std::io::Error),
+    Io(std::io::Error),
+}
+
+impl From<std::io::Error> for LwprError {
+    fn from(e: std::io::Error) -> LwprError {
+        LwprError::Io(e)
+    }
 }
 
 /// Checks a slice's length and that every entry is finite.

@@ -30,6 +30,25 @@ fn fmt(msg: impl Into<String>) -> LwprError {
     LwprError::Format(msg.into())
 }
 
+/// Writes `bytes` to `path` through a temporary file next to it (named after `path`, this
+/// process and a counter, so concurrent writers do not share it) and a rename: a crash or
+/// failure leaves any old file at `path` whole, and the temporary file is removed on failure.
+/// Fails as the file system does (for example when `path` is a directory or its folder does not
+/// exist).
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    static COUNTER: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+    let n = COUNTER.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let mut tmp = path.as_os_str().to_owned();
+    tmp.push(format!(".{}.{n}.tmp", std::process::id()));
+    let tmp = std::path::PathBuf::from(tmp);
+    let result = std::fs::write(&tmp, bytes).and_then(|()| std::fs::rename(&tmp, path));
+    if result.is_err() {
+        // Best effort: the write may have failed before creating it.
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result
+}
+
 impl Lwpr {
     /// The model as bytes (see the module docs for the layout).
     pub fn to_bytes(&self) -> Vec<u8> {
@@ -75,14 +94,10 @@ impl Lwpr {
         Ok(m)
     }
 
-    /// Writes the model to `path` (via a temporary file and a rename).
+    /// Writes the model to `path` by [`write_atomic`]: a failure leaves any file at `path` as it
+    /// was, and no temporary file behind.
     pub fn save(&self, path: impl AsRef<Path>) -> Result<(), LwprError> {
-        let path = path.as_ref();
-        let mut tmp = path.as_os_str().to_owned();
-        tmp.push(".tmp");
-        std::fs::write(&tmp, self.to_bytes())?;
-        std::fs::rename(&tmp, path)?;
-        Ok(())
+        Ok(write_atomic(path.as_ref(), &self.to_bytes())?)
     }
 
     /// Reads a model saved by [`Lwpr::save`]. Any model in memory is unaffected by a failure.

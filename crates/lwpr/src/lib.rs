@@ -73,7 +73,7 @@ mod simd;
 
 pub use config::{Kernel, LwprConfig, MetricInit, Norm, NormKeyword, PruneRule};
 pub use error::LwprError;
-pub use io::{FORMAT_VERSION, MAGIC};
+pub use io::{write_atomic, FORMAT_VERSION, MAGIC};
 pub use model::{Lwpr, UpdateInfo};
 pub use params::Params;
 pub use partition::{Activation, LocalModel, RfEvent, RfId, RfView};

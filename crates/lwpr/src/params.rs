@@ -67,14 +67,31 @@ fn norm(name: &str, n: &Norm, len: usize) -> Result<Vec<f64>, LwprError> {
     Ok(v)
 }
 
-fn range(name: &str, v: f64, lo: f64, hi: f64, lo_open: bool) -> Result<(), LwprError> {
-    let ok = v.is_finite() && (if lo_open { v > lo } else { v >= lo }) && v <= hi;
-    if ok {
-        Ok(())
-    } else {
-        let l = if lo_open { "(" } else { "[" };
-        Err(bad(format!("{name} = {v} is outside {l}{lo}, {hi}]")))
+/// Checks `lo < v` (`lo_open`) or `lo ≤ v`, and `v ≤ hi` or `v < hi` (`hi_open`); `hi = ∞`
+/// means only finite.
+fn range(
+    name: &str,
+    v: f64,
+    lo: f64,
+    hi: f64,
+    lo_open: bool,
+    hi_open: bool,
+) -> Result<(), LwprError> {
+    let above = if lo_open { v > lo } else { v >= lo };
+    let below = if hi_open { v < hi } else { v <= hi };
+    if v.is_finite() && above && below {
+        return Ok(());
     }
+    let (l, r) = (
+        if lo_open { "(" } else { "[" },
+        if hi_open { ")" } else { "]" },
+    );
+    Err(bad(if hi == f64::INFINITY {
+        let op = if lo_open { ">" } else { "≥" };
+        format!("{name} = {v}: must be finite and {op} {lo}")
+    } else {
+        format!("{name} = {v} is outside {l}{lo}, {hi}{r}")
+    }))
 }
 
 /// Full symmetric `D` (row-major `nk²`) from the init spec.
@@ -119,20 +136,24 @@ impl Params {
         let kdims = dims("kernel_dims", &cfg.kernel_dims, n_in)?;
         let rdims = dims("regression_dims", &cfg.regression_dims, n_in)?;
         let nk = kdims.len();
-        range("init_alpha", cfg.init_alpha, 0.0, f64::MAX, true)?;
-        range("meta_rate", cfg.meta_rate, 0.0, f64::MAX, true)?;
-        range("penalty", cfg.penalty, 0.0, f64::MAX, false)?;
-        range("w_gen", cfg.w_gen, 0.0, 1.0, true)?;
-        range("w_prune", cfg.w_prune, 0.0, 1.0, true)?;
-        range("init_lambda", cfg.init_lambda, 0.0, 1.0, true)?;
-        range("final_lambda", cfg.final_lambda, 0.0, 1.0, true)?;
-        range("tau_lambda", cfg.tau_lambda, 0.0, 1.0, false)?;
-        range("init_s2", cfg.init_s2, 0.0, f64::MAX, true)?;
-        range("add_threshold", cfg.add_threshold, 0.0, f64::MAX, true)?;
-        range("cutoff", cfg.cutoff, 0.0, 1.0, false)?;
-        if cfg.cutoff >= 1.0 {
-            return Err(bad("cutoff must be < 1"));
-        }
+        range("init_alpha", cfg.init_alpha, 0.0, f64::INFINITY, true, true)?;
+        range("meta_rate", cfg.meta_rate, 0.0, f64::INFINITY, true, true)?;
+        range("penalty", cfg.penalty, 0.0, f64::INFINITY, false, true)?;
+        range("w_gen", cfg.w_gen, 0.0, 1.0, true, false)?;
+        range("w_prune", cfg.w_prune, 0.0, 1.0, true, false)?;
+        range("init_lambda", cfg.init_lambda, 0.0, 1.0, true, false)?;
+        range("final_lambda", cfg.final_lambda, 0.0, 1.0, true, false)?;
+        range("tau_lambda", cfg.tau_lambda, 0.0, 1.0, false, false)?;
+        range("init_s2", cfg.init_s2, 0.0, f64::INFINITY, true, true)?;
+        range(
+            "add_threshold",
+            cfg.add_threshold,
+            0.0,
+            f64::INFINITY,
+            true,
+            true,
+        )?;
+        range("cutoff", cfg.cutoff, 0.0, 1.0, false, true)?;
         let norm_in = norm("norm_in", &cfg.norm_in, n_in)?;
         let norm_out = norm("norm_out", &cfg.norm_out, n_out)?;
         let d = init_d_full(&cfg.init_d, nk)?;

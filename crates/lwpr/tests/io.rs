@@ -101,3 +101,34 @@ fn no_support_is_reported() {
     let s = m.predict(&[0.0, 0.0], &mut y).unwrap();
     assert!(s.sum_w > 0.5);
 }
+
+/// A failed save (the path is a folder) is an I/O error that leaves no temporary file and
+/// changes neither the model nor an existing file; a save over an existing file replaces it.
+#[test]
+fn failed_save_leaves_no_temporary_file() {
+    let dir = std::env::temp_dir().join(format!("lwpr-io-save-{}", std::process::id()));
+    std::fs::create_dir_all(dir.join("folder")).unwrap();
+    let listing = || {
+        let mut v: Vec<String> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        v.sort();
+        v
+    };
+    let a = trained();
+    let before = a.to_bytes();
+    let err = a.save(dir.join("folder")).unwrap_err();
+    assert!(matches!(err, LwprError::Io(_)), "{err}");
+    // The OS error's text once: the message is not repeated by a `source`.
+    assert!(std::error::Error::source(&err).is_none());
+    assert_eq!(listing(), ["folder"]);
+    assert_eq!(a.to_bytes(), before);
+    // Replacing an existing file.
+    let file = dir.join("m.bin");
+    std::fs::write(&file, b"old").unwrap();
+    a.save(&file).unwrap();
+    assert_eq!(std::fs::read(&file).unwrap(), before);
+    assert_eq!(listing(), ["folder", "m.bin"]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
