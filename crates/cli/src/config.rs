@@ -91,9 +91,7 @@ impl Config {
         let Some(p) = path else {
             return Ok(Self::default());
         };
-        let text =
-            std::fs::read_to_string(p).with_context(|| format!("reading {}", p.display()))?;
-        toml::from_str(&text).with_context(|| format!("parsing config {}", p.display()))
+        crate::util::read_toml(p)
     }
 
     /// The `[learner]` section for `model`: empty nominal gains, rest posture and torque limits

@@ -5,6 +5,7 @@
 
 mod cmd;
 mod config;
+mod csv;
 mod learned;
 mod plot;
 mod progress;

@@ -64,5 +64,26 @@ pub fn std_dev(rows: &[Vec<f64>], col: usize) -> f64 {
     (rows.iter().map(|r| (r[col] - mean).powi(2)).sum::<f64>() / n).sqrt()
 }
 
+/// Reads a TOML file into `T`. A syntax or type error reads `FILE:LINE:COLUMN: message` (one
+/// line, the position of the offending value).
+pub fn read_toml<T: serde::de::DeserializeOwned>(path: &Path) -> Result<T> {
+    let text =
+        std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
+    toml::from_str(&text).map_err(|e| {
+        let at = e.span().map(|s| {
+            let before = &text[..s.start.min(text.len())];
+            let line = before.matches('\n').count() + 1;
+            let col = before.len() - before.rfind('\n').map_or(0, |i| i + 1) + 1;
+            format!(":{line}:{col}")
+        });
+        anyhow::anyhow!(
+            "{}{}: {}",
+            path.display(),
+            at.unwrap_or_default(),
+            e.message().trim().replace('\n', " ")
+        )
+    })
+}
+
 /// Median (mean of the middle two for an even count; NaN when empty).
 pub use lwpr::datasets::median;

@@ -1,10 +1,12 @@
-//! `osrl lwpr fit`: train an LWPR model on a CSV file and test it on another.
+//! `osrl lwpr fit`: train an LWPR model on a CSV file and test it on another; `osrl lwpr eval`:
+//! test a saved model.
 //!
-//! CSV files have a header row; the first K columns are inputs, the rest outputs. The config is
-//! TOML with the parameter names of `shared/LWPR.md` in snake case (see `lwpr::LwprConfig`);
-//! unknown keys are an error. `norm_in`/`norm_out` may be `"std"`: the training data's
-//! standard deviation per column.
+//! CSV files have a header row; the first K columns are inputs, the rest outputs (see
+//! [`crate::csv::Table`]). The config is TOML with the parameter names of `shared/LWPR.md` in
+//! snake case (see `lwpr::LwprConfig`); unknown keys are an error. `norm_in`/`norm_out` may be
+//! `"std"`: the training data's standard deviation per column.
 
+use crate::csv::Table;
 use crate::util;
 use anyhow::{bail, Context, Result};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -25,22 +27,40 @@ pub struct Args {
 #[derive(clap::Subcommand)]
 enum Sub {
     /// Train on a CSV file for some epochs and report test nMSE, model size and timings.
+    ///
+    /// The last stdout line is one JSON object: `nmse` (per output: test MSE / variance of the
+    /// test targets; null when undefined, with a warning on stderr), `n_rfs` (per output, one
+    /// entry when RFs are shared), `update_us` and `predict_us` (median µs per call of the
+    /// whole model), `train_seconds`, `outputs` (column names), `unsupported` (test rows per
+    /// output where no trustworthy receptive field is active: predicted as 0, as the
+    /// reference library does, and counted in the nMSE), `non_finite` (test rows per output
+    /// with a non-finite prediction), `n_train`, `n_test`, `epochs`.
     Fit(FitArgs),
+    /// Test a model saved by `fit --save` on a CSV file (the model's inputs, then its outputs).
+    ///
+    /// The last stdout line is one JSON object with `nmse`, `n_rfs`, `predict_us`, `outputs`,
+    /// `unsupported`, `non_finite` and `n_test`, as `fit` reports them.
+    Eval(EvalArgs),
 }
 
 #[derive(clap::Args)]
 struct FitArgs {
-    /// Training data (CSV with a header row).
+    /// Training data: CSV with a header row of column names, then rows of numbers.
     #[arg(long)]
     train: PathBuf,
-    /// Test data (same columns).
+    /// Test data: the same columns in the same order.
     #[arg(long)]
     test: PathBuf,
     /// Number of input columns K (the first K); the remaining columns are outputs.
     #[arg(long)]
     inputs: usize,
-    /// LWPR config (TOML).
-    #[arg(long)]
+    /// LWPR config (TOML). Keys, each optional (unknown keys are an error): init_d (a number
+    /// r for r·I, a list for a diagonal, or a list of rows), init_alpha, diag_only, update_d,
+    /// meta, meta_rate, penalty, w_gen, w_prune, prune_rule ("wider"|"narrower"), init_lambda,
+    /// final_lambda, tau_lambda, init_s2, add_threshold, kernel ("gaussian"|"bisquare"),
+    /// norm_in and norm_out (a number, a list, or "std": the training data's standard
+    /// deviation), cutoff, shared_rfs, kernel_dims, regression_dims. Defaults: shared/LWPR.md.
+    #[arg(long, verbatim_doc_comment)]
     config: Option<PathBuf>,
     /// Passes over the training data, each in a fresh shuffled order.
     #[arg(long, default_value_t = 20)]
@@ -48,10 +68,23 @@ struct FitArgs {
     /// Seed of the shuffling.
     #[arg(long, default_value_t = 0)]
     seed: u64,
-    /// Save the trained model here.
+    /// Save the trained model here (checked before training; written after the report).
     #[arg(long)]
     save: Option<PathBuf>,
-    /// Print only one JSON object.
+    /// Print only the JSON object (no table).
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(clap::Args)]
+struct EvalArgs {
+    /// A model saved by `osrl lwpr fit --save`.
+    #[arg(long)]
+    model: PathBuf,
+    /// Test data: CSV with a header row, the model's inputs then its outputs.
+    #[arg(long)]
+    test: PathBuf,
+    /// Print only the JSON object (no table).
     #[arg(long)]
     json: bool,
 }
@@ -60,108 +93,151 @@ struct FitArgs {
 pub fn run(a: Args) -> Result<()> {
     match a.cmd {
         Sub::Fit(f) => fit(f),
+        Sub::Eval(e) => eval(e),
     }
 }
 
-/// Rows of a numeric CSV file with a header; every row has the header's column count.
-fn read_csv(path: &Path) -> Result<(Vec<String>, Vec<Vec<f64>>)> {
-    let text = std::fs::read_to_string(path).with_context(|| format!("{}", path.display()))?;
-    let mut lines = text
-        .lines()
-        .enumerate()
-        .filter(|(_, l)| !l.trim().is_empty());
-    let (_, header) = lines
-        .next()
-        .with_context(|| format!("{}: empty file", path.display()))?;
-    let names: Vec<String> = header.split(',').map(|s| s.trim().to_string()).collect();
-    let mut rows = Vec::new();
-    for (i, line) in lines {
-        let row = line
-            .split(',')
-            .map(|s| s.trim().parse::<f64>())
-            .collect::<Result<Vec<f64>, _>>()
-            .with_context(|| format!("{}:{}: not a number", path.display(), i + 1))?;
-        if row.len() != names.len() {
-            bail!(
-                "{}:{}: {} columns, header has {}",
-                path.display(),
-                i + 1,
-                row.len(),
-                names.len()
-            );
-        }
-        if row.iter().any(|v| !v.is_finite()) {
-            bail!("{}:{}: non-finite value", path.display(), i + 1);
-        }
-        rows.push(row);
-    }
-    if rows.is_empty() {
-        bail!("{}: no data rows", path.display());
-    }
-    Ok((names, rows))
-}
+/// At most this many update times are kept for the median (every n-th update beyond).
+const MAX_TIMINGS: usize = 1 << 20;
 
 fn fit(a: FitArgs) -> Result<()> {
-    let (names, train) = read_csv(&a.train)?;
-    let (test_names, test) = read_csv(&a.test)?;
-    if names.len() != test_names.len() {
-        bail!(
-            "train has {} columns, test has {}",
-            names.len(),
-            test_names.len()
-        );
-    }
-    let (k, cols) = (a.inputs, names.len());
+    let train = Table::read(&a.train)?;
+    let test = Table::read(&a.test)?;
+    train.check_same_columns(&test)?;
+    let (k, cols) = (a.inputs, train.names.len());
     if k == 0 || k >= cols {
         bail!("--inputs {k}: need 1 ≤ K < {cols} (the number of columns)");
     }
     if a.epochs == 0 {
         bail!("--epochs must be at least 1");
     }
+    let (e, n) = (a.epochs, train.rows.len());
+    let total = e
+        .checked_mul(n)
+        .with_context(|| format!("--epochs {e}: {e} × {n} rows is too many updates"))?;
+    if let Some(p) = &a.save {
+        check_save_path(p)?;
+    }
     let n_out = cols - k;
     let mut cfg: LwprConfig = match &a.config {
-        Some(p) => {
-            let text = std::fs::read_to_string(p).with_context(|| format!("{}", p.display()))?;
-            toml::from_str(&text).with_context(|| format!("{}", p.display()))?
-        }
+        Some(p) => util::read_toml(p)?,
         None => LwprConfig::default(),
     };
-    let std_in: Vec<f64> = (0..k).map(|c| util::std_dev(&train, c)).collect();
-    let std_out: Vec<f64> = (k..cols).map(|c| util::std_dev(&train, c)).collect();
+    let std_in: Vec<f64> = (0..k).map(|c| util::std_dev(&train.rows, c)).collect();
+    let std_out: Vec<f64> = (k..cols).map(|c| util::std_dev(&train.rows, c)).collect();
     cfg.resolve_std(&std_in, &std_out);
-    let mut model = Lwpr::new(k, n_out, &cfg)?;
+    let mut model = Lwpr::new(k, n_out, &cfg).with_context(|| match &a.config {
+        Some(p) => format!("{}", p.display()),
+        None => "the default config".into(),
+    })?;
 
     let mut rng = ChaCha8Rng::seed_from_u64(a.seed);
-    let mut order: Vec<usize> = (0..train.len()).collect();
-    let total = (a.epochs * train.len()) as u64;
-    let bar = ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::stderr());
+    let mut order: Vec<usize> = (0..train.rows.len()).collect();
+    let bar = ProgressBar::with_draw_target(Some(total as u64), ProgressDrawTarget::stderr());
     bar.set_style(
         ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} updates {msg}")
             .expect("valid template"),
     );
-    let mut update_ns = Vec::with_capacity(total as usize);
+    // Every `stride`-th update is timed (all of them up to MAX_TIMINGS updates).
+    let stride = total.div_ceil(MAX_TIMINGS).max(1);
+    let mut update_ns = Vec::with_capacity(total.min(MAX_TIMINGS));
     let t0 = Instant::now();
-    for e in 0..a.epochs {
+    let mut done = 0usize;
+    for _ in 0..a.epochs {
         order.shuffle(&mut rng);
         for &i in &order {
-            let (x, y) = train[i].split_at(k);
-            let t = Instant::now();
-            model.update(x, y)?;
-            update_ns.push(t.elapsed().as_nanos() as f64);
+            let (x, y) = train.rows[i].split_at(k);
+            if done.is_multiple_of(stride) {
+                let t = Instant::now();
+                model.update(x, y)?;
+                update_ns.push(t.elapsed().as_nanos() as f64);
+            } else {
+                model.update(x, y)?;
+            }
+            done += 1;
+            if done.is_multiple_of(1024) {
+                bar.set_position(done as u64);
+            }
         }
         model.drain_events().for_each(drop);
-        bar.set_position(((e + 1) * train.len()) as u64);
+        bar.set_position(done as u64);
         bar.set_message(format!("{} RFs", model.n_rfs_total()));
     }
     let train_seconds = t0.elapsed().as_secs_f64();
     bar.finish_and_clear();
 
+    let ev = evaluate(&mut model, &test)?;
+    let mut out = ev.json(&model, &test.names[k..]);
+    out["update_us"] = (util::median(update_ns) / 1e3).into();
+    out["train_seconds"] = train_seconds.into();
+    out["n_train"] = train.rows.len().into();
+    out["epochs"] = a.epochs.into();
+    ev.report(&model, &test.names[k..], &out, a.json);
+    if let Some(p) = &a.save {
+        model
+            .save(p)
+            .with_context(|| format!("saving {} (the results above stand)", p.display()))?;
+    }
+    Ok(())
+}
+
+fn eval(a: EvalArgs) -> Result<()> {
+    let mut model = Lwpr::load(&a.model).with_context(|| format!("{}", a.model.display()))?;
+    let test = Table::read(&a.test)?;
+    let (k, n_out) = (model.n_in(), model.n_out());
+    if test.names.len() != k + n_out {
+        bail!(
+            "{}: {} columns, the model has {k} inputs and {n_out} outputs",
+            test.path.display(),
+            test.names.len()
+        );
+    }
+    let ev = evaluate(&mut model, &test)?;
+    let out = ev.json(&model, &test.names[k..]);
+    ev.report(&model, &test.names[k..], &out, a.json);
+    Ok(())
+}
+
+/// Fails early when a model could not be saved at `p`: a folder, or a file in a missing folder.
+fn check_save_path(p: &Path) -> Result<()> {
+    if p.is_dir() {
+        bail!("--save {}: is a folder, need a file name", p.display());
+    }
+    let parent = p.parent().filter(|d| !d.as_os_str().is_empty());
+    if let Some(d) = parent {
+        if !d.is_dir() {
+            bail!(
+                "--save {}: folder {} does not exist",
+                p.display(),
+                d.display()
+            );
+        }
+    }
+    Ok(())
+}
+
+/// A model's predictions on a test table (inputs first, then the model's outputs).
+struct Evaluation {
+    nmse: Vec<f64>,
+    /// Test rows per output with no trustworthy RF active (predicted as 0).
+    unsupported: Vec<usize>,
+    /// Test rows per output whose prediction is not finite.
+    non_finite: Vec<usize>,
+    /// Variance of each output's test targets.
+    var: Vec<f64>,
+    predict_us: f64,
+    n_test: usize,
+}
+
+fn evaluate(model: &mut Lwpr, test: &Table) -> Result<Evaluation> {
+    let (k, n_out) = (model.n_in(), model.n_out());
     let mut y = vec![0.0; n_out];
     let mut support = vec![0.0; n_out];
     let mut sq = vec![0.0; n_out];
     let mut unsupported = vec![0usize; n_out];
-    let mut predict_ns = Vec::with_capacity(test.len());
-    for row in &test {
+    let mut non_finite = vec![0usize; n_out];
+    let mut predict_ns = Vec::with_capacity(test.rows.len());
+    for row in &test.rows {
         let (x, t) = row.split_at(k);
         let s = Instant::now();
         model.predict_with_support(x, &mut y, &mut support)?;
@@ -169,46 +245,65 @@ fn fit(a: FitArgs) -> Result<()> {
         for o in 0..n_out {
             sq[o] += (y[o] - t[o]).powi(2);
             unsupported[o] += (support[o] == 0.0) as usize;
+            non_finite[o] += !y[o].is_finite() as usize;
         }
     }
-    let nt = test.len() as f64;
-    let nmse: Vec<f64> = (0..n_out)
-        .map(|o| (sq[o] / nt) / util::std_dev(&test, k + o).powi(2))
+    let nt = test.rows.len() as f64;
+    let var: Vec<f64> = (k..k + n_out)
+        .map(|c| util::std_dev(&test.rows, c).powi(2))
         .collect();
-    if let Some(p) = &a.save {
-        model
-            .save(p)
-            .with_context(|| format!("saving {}", p.display()))?;
+    Ok(Evaluation {
+        nmse: (0..n_out).map(|o| (sq[o] / nt) / var[o]).collect(),
+        unsupported,
+        non_finite,
+        var,
+        predict_us: util::median(predict_ns) / 1e3,
+        n_test: test.rows.len(),
+    })
+}
+
+impl Evaluation {
+    /// The JSON keys both subcommands report.
+    fn json(&self, model: &Lwpr, outputs: &[String]) -> serde_json::Value {
+        serde_json::json!({
+            "nmse": self.nmse,
+            "n_rfs": model.n_rfs(),
+            "predict_us": self.predict_us,
+            "outputs": outputs,
+            "unsupported": self.unsupported,
+            "non_finite": self.non_finite,
+            "n_test": self.n_test,
+        })
     }
-    let out = serde_json::json!({
-        "nmse": nmse,
-        "n_rfs": model.n_rfs(),
-        "update_us": util::median(update_ns) / 1e3,
-        "predict_us": util::median(predict_ns) / 1e3,
-        "train_seconds": train_seconds,
-        "outputs": &names[k..],
-        "unsupported": unsupported,
-        "n_train": train.len(),
-        "n_test": test.len(),
-        "epochs": a.epochs,
-    });
-    if !a.json {
-        println!(
-            "{:<12} {:>10} {:>8} {:>12}",
-            "output", "nMSE", "RFs", "unsupported"
-        );
-        let rfs = model.n_rfs();
-        for o in 0..n_out {
-            let r = rfs[if rfs.len() == 1 { 0 } else { o }];
-            println!(
-                "{:<12} {:>10.5} {:>8} {:>12}",
-                names[k + o],
-                nmse[o],
-                r,
-                unsupported[o]
-            );
+
+    /// Warnings (stderr) for undefined nMSEs, the table unless `json_only`, then `out` as the
+    /// last stdout line.
+    fn report(&self, model: &Lwpr, outputs: &[String], out: &serde_json::Value, json_only: bool) {
+        for (o, name) in outputs.iter().enumerate() {
+            if self.var[o] == 0.0 {
+                eprintln!("warning: the test targets of {name} are constant: its nMSE is undefined (null)");
+            }
+            if self.non_finite[o] > 0 {
+                eprintln!(
+                    "warning: {} predictions of {name} are not finite: its nMSE is undefined (null)",
+                    self.non_finite[o]
+                );
+            }
         }
+        if !json_only {
+            println!(
+                "{:<12} {:>10} {:>8} {:>12}",
+                "output", "nMSE", "RFs", "unsupported"
+            );
+            let rfs = model.n_rfs();
+            for (o, name) in outputs.iter().enumerate() {
+                let r = rfs[if rfs.len() == 1 { 0 } else { o }];
+                println!(
+                    "{:<12} {:>10.5} {:>8} {:>12}",
+                    name, self.nmse[o], r, self.unsupported[o]
+                );
+            }
+        }
+        util::print_json(out);
     }
-    println!("{out}");
-    Ok(())
 }

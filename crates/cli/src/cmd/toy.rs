@@ -31,11 +31,7 @@ pub struct Args {
 
 fn load(a: &Args) -> Result<ToyConfig> {
     let mut cfg = match &a.config {
-        Some(p) => {
-            let text =
-                std::fs::read_to_string(p).with_context(|| format!("reading {}", p.display()))?;
-            toml::from_str(&text).with_context(|| format!("parsing {}", p.display()))?
-        }
+        Some(p) => crate::util::read_toml(p)?,
         None => ToyConfig::default(),
     };
     if let Some(s) = a.seeds {

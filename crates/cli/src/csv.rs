@@ -1,0 +1,110 @@
+//! Numeric CSV files with a header row (`osrl lwpr`). Every error names the file and line, and
+//! for a bad cell its column (number and name) and its text.
+
+use anyhow::{bail, Context, Result};
+use std::path::{Path, PathBuf};
+
+/// A CSV file's column names and rows (every row has one finite number per column).
+#[derive(Debug)]
+pub struct Table {
+    /// The file read.
+    pub path: PathBuf,
+    /// Column names, from the header row.
+    pub names: Vec<String>,
+    /// Data rows.
+    pub rows: Vec<Vec<f64>>,
+}
+
+impl Table {
+    /// Reads `path`: a header row of distinct, non-empty names (not numbers), then at least one
+    /// row of finite numbers, comma-separated. Blank lines are skipped; a UTF-8 byte-order mark
+    /// and spaces around cells are allowed.
+    pub fn read(path: &Path) -> Result<Table> {
+        let file = path.display();
+        let bytes = std::fs::read(path).with_context(|| format!("reading {file}"))?;
+        let text = std::str::from_utf8(&bytes).map_err(|e| {
+            let line = bytes[..e.valid_up_to()]
+                .iter()
+                .filter(|&&b| b == b'\n')
+                .count()
+                + 1;
+            anyhow::anyhow!("{file}:{line}: not UTF-8 text (save the CSV as UTF-8)")
+        })?;
+        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+        let mut lines = text
+            .lines()
+            .enumerate()
+            .map(|(i, l)| (i + 1, l))
+            .filter(|(_, l)| !l.trim().is_empty());
+        let (hl, header) = lines
+            .next()
+            .with_context(|| format!("{file}: empty file (need a header row and data rows)"))?;
+        let names: Vec<String> = header.split(',').map(|s| s.trim().to_string()).collect();
+        if names.iter().all(|n| n.parse::<f64>().is_ok()) {
+            bail!("{file}:{hl}: the first line holds numbers: the CSV needs a header row of column names");
+        }
+        for (j, n) in names.iter().enumerate() {
+            if n.is_empty() {
+                bail!("{file}:{hl}: column {} has no name", j + 1);
+            }
+            if let Some(k) = names[..j].iter().position(|m| m == n) {
+                bail!(
+                    "{file}:{hl}: columns {} and {} are both named '{n}'",
+                    k + 1,
+                    j + 1
+                );
+            }
+        }
+        let mut rows = Vec::new();
+        for (ln, line) in lines {
+            let cells: Vec<&str> = line.split(',').map(str::trim).collect();
+            if cells.len() != names.len() {
+                bail!(
+                    "{file}:{ln}: {} columns, the header has {}",
+                    cells.len(),
+                    names.len()
+                );
+            }
+            let mut row = Vec::with_capacity(cells.len());
+            for (j, cell) in cells.iter().enumerate() {
+                let at = || format!("{file}:{ln}: column {} ({})", j + 1, names[j]);
+                match cell.parse::<f64>() {
+                    Ok(v) if v.is_finite() => row.push(v),
+                    Ok(_) => bail!("{}: '{cell}' is not finite", at()),
+                    Err(_) => bail!("{}: '{cell}' is not a number", at()),
+                }
+            }
+            rows.push(row);
+        }
+        if rows.is_empty() {
+            bail!("{file}: no data rows after the header");
+        }
+        Ok(Table {
+            path: path.to_path_buf(),
+            names,
+            rows,
+        })
+    }
+
+    /// Fails unless `other` has the same column names in the same order (a test file for a
+    /// model trained on this one).
+    pub fn check_same_columns(&self, other: &Table) -> Result<()> {
+        let (a, b) = (self.path.display(), other.path.display());
+        if self.names.len() != other.names.len() {
+            bail!(
+                "{b} has {} columns, {a} has {}",
+                other.names.len(),
+                self.names.len()
+            );
+        }
+        if let Some(j) = (0..self.names.len()).find(|&j| self.names[j] != other.names[j]) {
+            bail!(
+                "{b}: column {} is '{}', in {a} it is '{}' (the files need the same columns in the same order)",
+                j + 1,
+                other.names[j],
+                self.names[j]
+            );
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,261 @@
+//! `osrl lwpr fit` and `osrl lwpr eval` on small CSV files: the report, saving and testing a
+//! model again, and errors that name what was wrong.
+
+mod common;
+
+use common::{last_json, osrl};
+use rand::{RngExt, SeedableRng};
+use std::path::{Path, PathBuf};
+
+/// A fresh folder for one test.
+fn folder(name: &str) -> PathBuf {
+    let d = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("lwpr-cli-{name}"));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn cross(x1: f64, x2: f64) -> f64 {
+    (-10.0 * x1 * x1)
+        .exp()
+        .max((-50.0 * x2 * x2).exp())
+        .max(1.25 * (-5.0 * (x1 * x1 + x2 * x2)).exp())
+}
+
+/// `n` rows of the cross function (with noise of standard deviation `noise`) as CSV.
+fn cross_csv(path: &Path, n: usize, noise: f64, seed: u64) {
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+    let mut s = String::from("x1,x2,y\n");
+    for _ in 0..n {
+        let (a, b): (f64, f64) = (rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0));
+        let e: f64 = rng.random_range(-1.0..1.0) * noise;
+        s += &format!("{a},{b},{}\n", cross(a, b) + e);
+    }
+    std::fs::write(path, s).unwrap();
+}
+
+fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+#[test]
+fn fit_reports_and_eval_of_the_saved_model_agrees() {
+    let d = folder("fit");
+    let (train, test, model) = (d.join("train.csv"), d.join("test.csv"), d.join("m.bin"));
+    cross_csv(&train, 400, 0.05, 1);
+    cross_csv(&test, 200, 0.0, 2);
+    let fit = |seed: &str| {
+        let (ok, out, err) = osrl(&[
+            "lwpr",
+            "fit",
+            "--train",
+            s(&train),
+            "--test",
+            s(&test),
+            "--inputs",
+            "2",
+            "--epochs",
+            "10",
+            "--seed",
+            seed,
+            "--save",
+            s(&model),
+            "--json",
+        ]);
+        assert!(ok, "{err}");
+        assert_eq!(out.lines().count(), 1, "--json prints only the JSON object");
+        last_json(&out)
+    };
+    let j = fit("3");
+    for key in [
+        "nmse",
+        "n_rfs",
+        "update_us",
+        "predict_us",
+        "train_seconds",
+        "unsupported",
+    ] {
+        assert!(!j[key].is_null(), "{key} missing: {j}");
+    }
+    let nmse = j["nmse"][0].as_f64().unwrap();
+    // A fitted cross, not the mean (nMSE 1) nor a failed fit.
+    assert!(nmse > 0.0 && nmse < 0.5, "{j}");
+    assert_eq!(j["n_rfs"].as_array().unwrap().len(), 1);
+    assert_eq!(j["outputs"], serde_json::json!(["y"]));
+    assert_eq!(
+        (j["n_train"].as_u64(), j["n_test"].as_u64()),
+        (Some(400), Some(200))
+    );
+    // The same seed gives the same numbers.
+    assert_eq!(fit("3")["nmse"], j["nmse"]);
+    // No temporary file is left next to the model.
+    let mut names: Vec<_> = std::fs::read_dir(&d)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .collect();
+    names.sort();
+    assert_eq!(names, ["m.bin", "test.csv", "train.csv"]);
+    // The saved model predicts the test set exactly as the model that was fitted.
+    let (ok, out, err) = osrl(&["lwpr", "eval", "--model", s(&model), "--test", s(&test)]);
+    assert!(ok, "{err}");
+    assert!(out.contains("nMSE"), "table expected without --json: {out}");
+    let e = last_json(&out);
+    assert_eq!(e["nmse"], j["nmse"]);
+    assert_eq!(e["n_rfs"], j["n_rfs"]);
+    // A truncated model file is an error naming the file.
+    let bytes = std::fs::read(&model).unwrap();
+    let cut = d.join("cut.bin");
+    std::fs::write(&cut, &bytes[..bytes.len() / 2]).unwrap();
+    let (ok, _, err) = osrl(&["lwpr", "eval", "--model", s(&cut), "--test", s(&test)]);
+    assert!(
+        !ok && err.contains("cut.bin") && err.contains("cannot read LWPR model"),
+        "{err}"
+    );
+}
+
+#[test]
+fn bad_csv_files_name_the_line_column_and_text() {
+    let d = folder("csv");
+    let good = d.join("good.csv");
+    cross_csv(&good, 50, 0.0, 3);
+    let cases: [(&str, &str, &[&str]); 6] = [
+        (
+            "x1,x2,y\n0.1,0.2,0.3\n0.2,abc,0.4\n",
+            "nonnum",
+            &[":3:", "column 2 (x2)", "'abc'"],
+        ),
+        (
+            "x1,x2,y\n0.1,NaN,0.3\n",
+            "nan",
+            &[":2:", "column 2 (x2)", "not finite"],
+        ),
+        (
+            "x1,x2,y\n0.1,0.2\n",
+            "ragged",
+            &[":2:", "2 columns", "header has 3"],
+        ),
+        (
+            "0.1,0.2,0.3\n0.2,0.3,0.4\n",
+            "noheader",
+            &[":1:", "header row"],
+        ),
+        (
+            "x1,x1,y\n0.1,0.2,0.3\n",
+            "dup",
+            &["columns 1 and 2", "'x1'"],
+        ),
+        ("x1,x2,y\n", "nodata", &["no data rows"]),
+    ];
+    for (text, name, want) in cases {
+        let p = d.join(format!("{name}.csv"));
+        std::fs::write(&p, text).unwrap();
+        let (ok, _, err) = osrl(&[
+            "lwpr",
+            "fit",
+            "--train",
+            s(&p),
+            "--test",
+            s(&good),
+            "--inputs",
+            "2",
+        ]);
+        assert!(!ok, "{name} accepted");
+        assert!(err.contains(&format!("{name}.csv")), "{name}: {err}");
+        for w in want {
+            assert!(err.contains(w), "{name}: '{w}' not in {err}");
+        }
+    }
+    // A test file whose columns differ from the training file's.
+    let other = d.join("other.csv");
+    std::fs::write(&other, "y,x2,x1\n0.1,0.2,0.3\n").unwrap();
+    let (ok, _, err) = osrl(&[
+        "lwpr",
+        "fit",
+        "--train",
+        s(&good),
+        "--test",
+        s(&other),
+        "--inputs",
+        "2",
+    ]);
+    assert!(
+        !ok && err.contains("column 1 is 'y'") && err.contains("good.csv"),
+        "{err}"
+    );
+}
+
+#[test]
+fn bad_configs_and_save_paths_fail_before_training() {
+    let d = folder("cfg");
+    let data = d.join("data.csv");
+    cross_csv(&data, 50, 0.0, 4);
+    let fit = |extra: &[&str]| {
+        let mut args = vec![
+            "lwpr",
+            "fit",
+            "--train",
+            s(&data),
+            "--test",
+            s(&data),
+            "--inputs",
+            "2",
+        ];
+        args.extend_from_slice(extra);
+        osrl(&args)
+    };
+    let cfg = d.join("c.toml");
+    let cases = [
+        (
+            "init_alpha = 0\n",
+            vec!["c.toml", "init_alpha = 0", "must be finite and > 0"],
+        ),
+        (
+            "cutoff = 1\n",
+            vec!["c.toml", "cutoff = 1 is outside [0, 1)"],
+        ),
+        (
+            "init_d = \"abc\"\n",
+            vec!["c.toml:1:10", "a number r (for r·I)"],
+        ),
+        ("norm_in = \"mean\"\n", vec!["c.toml:1:11", "\"std\""]),
+        ("w_gem = 0.2\n", vec!["c.toml:1:1", "w_gem"]),
+    ];
+    for (text, want) in cases {
+        std::fs::write(&cfg, text).unwrap();
+        let (ok, _, err) = fit(&["--config", s(&cfg)]);
+        assert!(!ok, "{text} accepted");
+        assert_eq!(err.lines().count(), 1, "one line: {err}");
+        for w in want {
+            assert!(err.contains(w), "{text}: '{w}' not in {err}");
+        }
+    }
+    // Saving into a folder that does not exist, or onto a folder, fails before training.
+    let missing = d.join("no/such/folder/m.bin");
+    let (ok, out, err) = fit(&["--save", s(&missing)]);
+    assert!(
+        !ok && out.is_empty() && err.contains("does not exist"),
+        "{out} {err}"
+    );
+    let (ok, out, err) = fit(&["--save", s(&d)]);
+    assert!(
+        !ok && out.is_empty() && err.contains("is a folder"),
+        "{out} {err}"
+    );
+    // A constant test target: nMSE undefined, said on stderr, null in the JSON.
+    let flat = d.join("flat.csv");
+    std::fs::write(&flat, "x1,x2,y\n0.1,0.2,0.5\n-0.3,0.4,0.5\n").unwrap();
+    let (ok, out, err) = osrl(&[
+        "lwpr",
+        "fit",
+        "--train",
+        s(&data),
+        "--test",
+        s(&flat),
+        "--inputs",
+        "2",
+        "--json",
+    ]);
+    assert!(ok, "{err}");
+    assert!(err.contains("constant"), "{err}");
+    assert!(last_json(&out)["nmse"][0].is_null());
+}
