@@ -71,6 +71,12 @@ impl Table {
                 match cell.parse::<f64>() {
                     Ok(v) if v.is_finite() => row.push(v),
                     Ok(_) => bail!("{}: '{cell}' is not finite", at()),
+                    Err(_) if cell.contains([';', '\t']) => {
+                        bail!(
+                            "{}: '{cell}' is not a number (the separator must be a comma)",
+                            at()
+                        )
+                    }
                     Err(_) => bail!("{}: '{cell}' is not a number", at()),
                 }
             }

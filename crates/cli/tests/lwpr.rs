@@ -118,7 +118,12 @@ fn bad_csv_files_name_the_line_column_and_text() {
     let d = folder("csv");
     let good = d.join("good.csv");
     cross_csv(&good, 50, 0.0, 3);
-    let cases: [(&str, &str, &[&str]); 6] = [
+    let cases: [(&str, &str, &[&str]); 7] = [
+        (
+            "x1;x2;y\n0.1;0.2;0.3\n",
+            "semicolons",
+            &[":2:", "separator must be a comma"],
+        ),
         (
             "x1,x2,y\n0.1,0.2,0.3\n0.2,abc,0.4\n",
             "nonnum",
