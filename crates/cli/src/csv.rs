@@ -16,9 +16,10 @@ pub struct Table {
 }
 
 impl Table {
-    /// Reads `path`: a header row of distinct, non-empty names (not numbers), then at least one
-    /// row of finite numbers, comma-separated. Blank lines are skipped; a UTF-8 byte-order mark
-    /// and spaces around cells are allowed.
+    /// Reads `path`: a header row of distinct, non-empty names (not numbers; quotes around a
+    /// name are dropped), then at least one row of finite numbers, comma-separated. Blank lines
+    /// are skipped; `\n` or `\r\n` line ends, a UTF-8 byte-order mark and spaces around cells
+    /// are allowed.
     pub fn read(path: &Path) -> Result<Table> {
         let file = path.display();
         let bytes = std::fs::read(path).with_context(|| format!("reading {file}"))?;
@@ -31,6 +32,9 @@ impl Table {
             anyhow::anyhow!("{file}:{line}: not UTF-8 text (save the CSV as UTF-8)")
         })?;
         let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+        if text.contains('\r') && !text.contains('\n') {
+            bail!("{file}: lines end in a lone carriage return: convert them to \\n or \\r\\n");
+        }
         let mut lines = text
             .lines()
             .enumerate()
@@ -39,7 +43,15 @@ impl Table {
         let (hl, header) = lines
             .next()
             .with_context(|| format!("{file}: empty file (need a header row and data rows)"))?;
-        let names: Vec<String> = header.split(',').map(|s| s.trim().to_string()).collect();
+        // Names may be quoted (as R's write.csv writes them).
+        let names: Vec<String> = header
+            .split(',')
+            .map(|s| {
+                let s = s.trim();
+                let q = s.len() >= 2 && s.starts_with('"') && s.ends_with('"');
+                (if q { &s[1..s.len() - 1] } else { s }).to_string()
+            })
+            .collect();
         if names.iter().all(|n| n.parse::<f64>().is_ok()) {
             bail!("{file}:{hl}: the first line holds numbers: the CSV needs a header row of column names");
         }

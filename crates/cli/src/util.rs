@@ -64,17 +64,20 @@ pub fn std_dev(rows: &[Vec<f64>], col: usize) -> f64 {
     (rows.iter().map(|r| (r[col] - mean).powi(2)).sum::<f64>() / n).sqrt()
 }
 
-/// Reads a TOML file into `T`. A syntax or type error reads `FILE:LINE:COLUMN: message` (one
-/// line, the position of the offending value).
+/// Reads a TOML file into `T`. A syntax or type error reads
+/// ``FILE:LINE:COLUMN: `that line`: message`` (one line; the position of the offending value).
 pub fn read_toml<T: serde::de::DeserializeOwned>(path: &Path) -> Result<T> {
     let text =
         std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
     toml::from_str(&text).map_err(|e| {
         let at = e.span().map(|s| {
-            let before = &text[..s.start.min(text.len())];
-            let line = before.matches('\n').count() + 1;
-            let col = before.len() - before.rfind('\n').map_or(0, |i| i + 1) + 1;
-            format!(":{line}:{col}")
+            let start = s.start.min(text.len());
+            let line_start = text[..start].rfind('\n').map_or(0, |i| i + 1);
+            let line_end = text[start..].find('\n').map_or(text.len(), |i| start + i);
+            let line = text[..start].matches('\n').count() + 1;
+            let col = text[line_start..start].chars().count() + 1;
+            let src = text[line_start..line_end].trim();
+            format!(":{line}:{col}: `{src}`")
         });
         anyhow::anyhow!(
             "{}{}: {}",

@@ -170,6 +170,69 @@ fn bad_csv_files_name_the_line_column_and_text() {
             assert!(err.contains(w), "{name}: '{w}' not in {err}");
         }
     }
+    // Line numbers count blank lines; other encodings and line ends are named.
+    let cases: [(&[u8], &str, &str); 3] = [
+        (
+            b"x1,x2,y\n\n0.1,0.2,0.3\n\n0.2,x,0.4\n",
+            "blank",
+            "blank.csv:5: column 2",
+        ),
+        (
+            b"x1,x2,y\n0.1,0.2,\xe90.3\n",
+            "latin1",
+            "latin1.csv:2: not UTF-8",
+        ),
+        (b"x1,x2,y\r0.1,0.2,0.3\r", "cr", "lone carriage return"),
+    ];
+    for (bytes, name, want) in cases {
+        let p = d.join(format!("{name}.csv"));
+        std::fs::write(&p, bytes).unwrap();
+        let (ok, _, err) = osrl(&[
+            "lwpr",
+            "fit",
+            "--train",
+            s(&p),
+            "--test",
+            s(&good),
+            "--inputs",
+            "2",
+        ]);
+        assert!(!ok && err.contains(want), "{name}: {err}");
+    }
+    // A byte-order mark, \r\n line ends, blank lines, quoted names and spaces are fine: the
+    // same numbers as the plain file.
+    let plain = std::fs::read_to_string(&good).unwrap();
+    let mut lines = plain.lines();
+    lines.next();
+    let fancy = d.join("fancy.csv");
+    let body: Vec<String> = lines
+        .map(|l| format!(" {} \r\n\r\n", l.replace(',', " , ")))
+        .collect();
+    std::fs::write(
+        &fancy,
+        format!("\u{feff}\"x1\",\"x2\",\"y\"\r\n{}", body.concat()),
+    )
+    .unwrap();
+    let run = |train: &Path| {
+        let (ok, out, err) = osrl(&[
+            "lwpr",
+            "fit",
+            "--train",
+            s(train),
+            "--test",
+            s(&good),
+            "--inputs",
+            "2",
+            "--epochs",
+            "2",
+            "--json",
+        ]);
+        assert!(ok, "{err}");
+        last_json(&out)
+    };
+    let (a, b) = (run(&good), run(&fancy));
+    assert_eq!(a["nmse"], b["nmse"]);
+    assert_eq!(b["outputs"], serde_json::json!(["y"]));
     // A test file whose columns differ from the training file's.
     let other = d.join("other.csv");
     std::fs::write(&other, "y,x2,x1\n0.1,0.2,0.3\n").unwrap();
@@ -219,10 +282,17 @@ fn bad_configs_and_save_paths_fail_before_training() {
             vec!["c.toml", "cutoff = 1 is outside [0, 1)"],
         ),
         (
-            "init_d = \"abc\"\n",
-            vec!["c.toml:1:10", "a number r (for r·I)"],
+            "meta = true\ninit_d = \"abc\"\n",
+            vec![
+                "c.toml:2:10",
+                "`init_d = \"abc\"`",
+                "expected a number r (for r·I)",
+            ],
         ),
-        ("norm_in = \"mean\"\n", vec!["c.toml:1:11", "\"std\""]),
+        (
+            "norm_in = \"mean\"\n",
+            vec!["c.toml:1:11", "`norm_in = \"mean\"`", "\"std\""],
+        ),
         ("w_gem = 0.2\n", vec!["c.toml:1:1", "w_gem"]),
     ];
     for (text, want) in cases {
@@ -246,9 +316,48 @@ fn bad_configs_and_save_paths_fail_before_training() {
         !ok && out.is_empty() && err.contains("is a folder"),
         "{out} {err}"
     );
-    // A constant test target: nMSE undefined, said on stderr, null in the JSON.
+    let slash = format!("{}/", d.join("nosuch").display());
+    let (ok, out, err) = fit(&["--save", &slash]);
+    assert!(
+        !ok && out.is_empty() && err.contains("is a folder"),
+        "{out} {err}"
+    );
+    // Too many updates to count is an error, not an abort.
+    let (ok, _, err) = fit(&["--epochs", "18446744073709551615"]);
+    assert!(!ok && err.contains("too many updates"), "{err}");
+    // A diverging model (outputs scaled by 1e300, their squares overflow once the RFs' error
+    // sums start, after about 100 updates of an RF): non-finite predictions are counted and
+    // said.
+    let more = d.join("more.csv");
+    cross_csv(&more, 500, 0.1, 5);
+    std::fs::write(&cfg, "norm_out = 1e-300\n").unwrap();
+    let (ok, out, err) = osrl(&[
+        "lwpr",
+        "fit",
+        "--train",
+        s(&more),
+        "--test",
+        s(&data),
+        "--inputs",
+        "2",
+        "--config",
+        s(&cfg),
+        "--json",
+    ]);
+    assert!(ok, "{err}");
+    let j = last_json(&out);
+    assert!(
+        j["non_finite"][0].as_u64().unwrap() > 0 && j["nmse"][0].is_null(),
+        "{j}"
+    );
+    assert!(err.contains("not finite"), "{err}");
+    // A constant test target (0.1: its computed variance is a rounding residue, not 0): nMSE
+    // undefined, said on stderr, null in the JSON.
     let flat = d.join("flat.csv");
-    std::fs::write(&flat, "x1,x2,y\n0.1,0.2,0.5\n-0.3,0.4,0.5\n").unwrap();
+    let rows: String = (0..100)
+        .map(|i| format!("{},0.2,0.1\n", i as f64 / 100.0))
+        .collect();
+    std::fs::write(&flat, format!("x1,x2,y\n{rows}")).unwrap();
     let (ok, out, err) = osrl(&[
         "lwpr",
         "fit",

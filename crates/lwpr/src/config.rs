@@ -8,8 +8,7 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 /// Serde for enums that are untagged in human-readable formats (TOML, JSON) and externally
 /// tagged in binary ones (postcard cannot decode untagged enums).
-/// `$expecting` completes the error "invalid value: expected …" of a human-readable value that
-/// fits no variant.
+/// `$expecting` is the error message of a human-readable value that fits no variant.
 macro_rules! dual_serde {
     ($ty:ident, $h:ident, $b:ident, $expecting:literal, { $($var:ident($t:ty)),* }) => {
         #[derive(Serialize, Deserialize)]
@@ -39,10 +38,10 @@ macro_rules! dual_serde {
 }
 
 dual_serde!(MetricInit, MetricInitH, MetricInitB,
-    "a number r (for r·I), a list of numbers (a diagonal) or a list of rows (a full matrix)",
+    "expected a number r (for r·I), a list of numbers (a diagonal) or a list of rows (a full matrix)",
     { Scalar(f64), Diagonal(Vec<f64>), Full(Vec<Vec<f64>>) });
 dual_serde!(Norm, NormH, NormB,
-    "a number, a list of numbers (one per column) or \"std\" (the training data's standard deviation)",
+    "expected a number, a list of numbers (one per column) or \"std\" (the training data's standard deviation)",
     { Scalar(f64), List(Vec<f64>), Keyword(NormKeyword) });
 
 /// The kernel turning the distance `q = (x − c)ᵀ D (x − c)` into an activation `w`.

@@ -30,20 +30,37 @@ fn fmt(msg: impl Into<String>) -> LwprError {
     LwprError::Format(msg.into())
 }
 
-/// Writes `bytes` to `path` through a temporary file next to it (named after `path`, this
-/// process and a counter, so concurrent writers do not share it) and a rename: a crash or
-/// failure leaves any old file at `path` whole, and the temporary file is removed on failure.
-/// Fails as the file system does (for example when `path` is a directory or its folder does not
-/// exist).
+/// Writes `bytes` to `path` through a new temporary file next to it and a rename, as `mv`
+/// does: a failure, or a crash (the data is synced before the rename), leaves any old file at
+/// `path` whole, and the temporary file is removed on failure. The temporary file is created
+/// exclusively (named after `path`, this process and a counter; an existing file or symbolic
+/// link of that name is never written through). The new file replaces whatever `path` was,
+/// with default permissions. Fails as the file system does (for example when `path` is a
+/// directory or its folder does not exist).
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    use std::io::Write;
     static COUNTER: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
-    let n = COUNTER.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-    let mut tmp = path.as_os_str().to_owned();
-    tmp.push(format!(".{}.{n}.tmp", std::process::id()));
-    let tmp = std::path::PathBuf::from(tmp);
-    let result = std::fs::write(&tmp, bytes).and_then(|()| std::fs::rename(&tmp, path));
+    let mut tries = 0;
+    let (tmp, mut file) = loop {
+        let n = COUNTER.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        let mut name = path.as_os_str().to_owned();
+        name.push(format!(".{}.{n}.tmp", std::process::id()));
+        let tmp = std::path::PathBuf::from(name);
+        match std::fs::OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(&tmp)
+        {
+            Ok(f) => break (tmp, f),
+            // Taken (by another file of that name): the next counter value.
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists && tries < 100 => tries += 1,
+            Err(e) => return Err(e),
+        }
+    };
+    let written = file.write_all(bytes).and_then(|()| file.sync_all());
+    drop(file);
+    let result = written.and_then(|()| std::fs::rename(&tmp, path));
     if result.is_err() {
-        // Best effort: the write may have failed before creating it.
         let _ = std::fs::remove_file(&tmp);
     }
     result

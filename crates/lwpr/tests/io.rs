@@ -132,3 +132,25 @@ fn failed_save_leaves_no_temporary_file() {
     assert_eq!(listing(), ["folder", "m.bin"]);
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A file or symbolic link already at a temporary file's name is never written through: the
+/// save takes another name, and the linked file is unchanged.
+#[cfg(unix)]
+#[test]
+fn save_does_not_write_through_an_existing_temporary_name() {
+    let dir = std::env::temp_dir().join(format!("lwpr-io-link-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let outside = dir.join("outside.txt");
+    std::fs::write(&outside, b"keep").unwrap();
+    let target = dir.join("m.bin");
+    // The first names the counter gives (other tests in this process may have used some).
+    for n in 0..20 {
+        let name = format!("m.bin.{}.{n}.tmp", std::process::id());
+        std::os::unix::fs::symlink(&outside, dir.join(name)).unwrap();
+    }
+    let a = trained();
+    a.save(&target).unwrap();
+    assert_eq!(std::fs::read(&outside).unwrap(), b"keep");
+    assert_eq!(std::fs::read(&target).unwrap(), a.to_bytes());
+    std::fs::remove_dir_all(&dir).unwrap();
+}

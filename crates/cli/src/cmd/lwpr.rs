@@ -81,7 +81,8 @@ struct EvalArgs {
     /// A model saved by `osrl lwpr fit --save`.
     #[arg(long)]
     model: PathBuf,
-    /// Test data: CSV with a header row, the model's inputs then its outputs.
+    /// Test data: CSV with a header row, the model's inputs then its outputs, in the order of
+    /// the training file (taken by position: a saved model keeps no column names).
     #[arg(long)]
     test: PathBuf,
     /// Print only the JSON object (no table).
@@ -200,7 +201,7 @@ fn eval(a: EvalArgs) -> Result<()> {
 
 /// Fails early when a model could not be saved at `p`: a folder, or a file in a missing folder.
 fn check_save_path(p: &Path) -> Result<()> {
-    if p.is_dir() {
+    if p.is_dir() || p.as_os_str().to_string_lossy().ends_with(['/', '\\']) {
         bail!("--save {}: is a folder, need a file name", p.display());
     }
     let parent = p.parent().filter(|d| !d.as_os_str().is_empty());
@@ -223,8 +224,8 @@ struct Evaluation {
     unsupported: Vec<usize>,
     /// Test rows per output whose prediction is not finite.
     non_finite: Vec<usize>,
-    /// Variance of each output's test targets.
-    var: Vec<f64>,
+    /// Whether each output's test targets are all equal.
+    constant: Vec<bool>,
     predict_us: f64,
     n_test: usize,
 }
@@ -249,14 +250,26 @@ fn evaluate(model: &mut Lwpr, test: &Table) -> Result<Evaluation> {
         }
     }
     let nt = test.rows.len() as f64;
+    // Constant targets have no variance (the computed one may be a rounding residue).
+    let constant: Vec<bool> = (k..k + n_out)
+        .map(|c| test.rows.iter().all(|r| r[c] == test.rows[0][c]))
+        .collect();
     let var: Vec<f64> = (k..k + n_out)
         .map(|c| util::std_dev(&test.rows, c).powi(2))
         .collect();
     Ok(Evaluation {
-        nmse: (0..n_out).map(|o| (sq[o] / nt) / var[o]).collect(),
+        nmse: (0..n_out)
+            .map(|o| {
+                if constant[o] {
+                    f64::NAN
+                } else {
+                    (sq[o] / nt) / var[o]
+                }
+            })
+            .collect(),
         unsupported,
         non_finite,
-        var,
+        constant,
         predict_us: util::median(predict_ns) / 1e3,
         n_test: test.rows.len(),
     })
@@ -280,7 +293,7 @@ impl Evaluation {
     /// last stdout line.
     fn report(&self, model: &Lwpr, outputs: &[String], out: &serde_json::Value, json_only: bool) {
         for (o, name) in outputs.iter().enumerate() {
-            if self.var[o] == 0.0 {
+            if self.constant[o] {
                 eprintln!("warning: the test targets of {name} are constant: its nMSE is undefined (null)");
             }
             if self.non_finite[o] > 0 {
