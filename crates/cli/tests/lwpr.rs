@@ -38,6 +38,22 @@ fn s(p: &Path) -> &str {
     p.to_str().unwrap()
 }
 
+/// `osrl lwpr fit --train TRAIN --test TEST --inputs 2 EXTRA…`: (success, stdout, stderr).
+fn fit2(train: &Path, test: &Path, extra: &[&str]) -> (bool, String, String) {
+    let mut args = vec![
+        "lwpr",
+        "fit",
+        "--train",
+        s(train),
+        "--test",
+        s(test),
+        "--inputs",
+        "2",
+    ];
+    args.extend_from_slice(extra);
+    osrl(&args)
+}
+
 #[test]
 fn fit_reports_and_eval_of_the_saved_model_agrees() {
     let d = folder("fit");
@@ -45,23 +61,19 @@ fn fit_reports_and_eval_of_the_saved_model_agrees() {
     cross_csv(&train, 400, 0.05, 1);
     cross_csv(&test, 200, 0.0, 2);
     let fit = |seed: &str| {
-        let (ok, out, err) = osrl(&[
-            "lwpr",
-            "fit",
-            "--train",
-            s(&train),
-            "--test",
-            s(&test),
-            "--inputs",
-            "2",
-            "--epochs",
-            "10",
-            "--seed",
-            seed,
-            "--save",
-            s(&model),
-            "--json",
-        ]);
+        let (ok, out, err) = fit2(
+            &train,
+            &test,
+            &[
+                "--epochs",
+                "10",
+                "--seed",
+                seed,
+                "--save",
+                s(&model),
+                "--json",
+            ],
+        );
         assert!(ok, "{err}");
         assert_eq!(out.lines().count(), 1, "--json prints only the JSON object");
         last_json(&out)
@@ -154,16 +166,7 @@ fn bad_csv_files_name_the_line_column_and_text() {
     for (text, name, want) in cases {
         let p = d.join(format!("{name}.csv"));
         std::fs::write(&p, text).unwrap();
-        let (ok, _, err) = osrl(&[
-            "lwpr",
-            "fit",
-            "--train",
-            s(&p),
-            "--test",
-            s(&good),
-            "--inputs",
-            "2",
-        ]);
+        let (ok, _, err) = fit2(&p, &good, &[]);
         assert!(!ok, "{name} accepted");
         assert!(err.contains(&format!("{name}.csv")), "{name}: {err}");
         for w in want {
@@ -187,16 +190,7 @@ fn bad_csv_files_name_the_line_column_and_text() {
     for (bytes, name, want) in cases {
         let p = d.join(format!("{name}.csv"));
         std::fs::write(&p, bytes).unwrap();
-        let (ok, _, err) = osrl(&[
-            "lwpr",
-            "fit",
-            "--train",
-            s(&p),
-            "--test",
-            s(&good),
-            "--inputs",
-            "2",
-        ]);
+        let (ok, _, err) = fit2(&p, &good, &[]);
         assert!(!ok && err.contains(want), "{name}: {err}");
     }
     // A byte-order mark, \r\n line ends, blank lines, quoted names and spaces are fine: the
@@ -214,19 +208,7 @@ fn bad_csv_files_name_the_line_column_and_text() {
     )
     .unwrap();
     let run = |train: &Path| {
-        let (ok, out, err) = osrl(&[
-            "lwpr",
-            "fit",
-            "--train",
-            s(train),
-            "--test",
-            s(&good),
-            "--inputs",
-            "2",
-            "--epochs",
-            "2",
-            "--json",
-        ]);
+        let (ok, out, err) = fit2(train, &good, &["--epochs", "2", "--json"]);
         assert!(ok, "{err}");
         last_json(&out)
     };
@@ -236,16 +218,7 @@ fn bad_csv_files_name_the_line_column_and_text() {
     // A test file whose columns differ from the training file's.
     let other = d.join("other.csv");
     std::fs::write(&other, "y,x2,x1\n0.1,0.2,0.3\n").unwrap();
-    let (ok, _, err) = osrl(&[
-        "lwpr",
-        "fit",
-        "--train",
-        s(&good),
-        "--test",
-        s(&other),
-        "--inputs",
-        "2",
-    ]);
+    let (ok, _, err) = fit2(&good, &other, &[]);
     assert!(
         !ok && err.contains("column 1 is 'y'") && err.contains("good.csv"),
         "{err}"
@@ -257,20 +230,7 @@ fn bad_configs_and_save_paths_fail_before_training() {
     let d = folder("cfg");
     let data = d.join("data.csv");
     cross_csv(&data, 50, 0.0, 4);
-    let fit = |extra: &[&str]| {
-        let mut args = vec![
-            "lwpr",
-            "fit",
-            "--train",
-            s(&data),
-            "--test",
-            s(&data),
-            "--inputs",
-            "2",
-        ];
-        args.extend_from_slice(extra);
-        osrl(&args)
-    };
+    let fit = |extra: &[&str]| fit2(&data, &data, extra);
     let cfg = d.join("c.toml");
     let cases = [
         (
@@ -331,19 +291,7 @@ fn bad_configs_and_save_paths_fail_before_training() {
     let more = d.join("more.csv");
     cross_csv(&more, 500, 0.1, 5);
     std::fs::write(&cfg, "norm_out = 1e-300\n").unwrap();
-    let (ok, out, err) = osrl(&[
-        "lwpr",
-        "fit",
-        "--train",
-        s(&more),
-        "--test",
-        s(&data),
-        "--inputs",
-        "2",
-        "--config",
-        s(&cfg),
-        "--json",
-    ]);
+    let (ok, out, err) = fit2(&more, &data, &["--config", s(&cfg), "--json"]);
     assert!(ok, "{err}");
     let j = last_json(&out);
     assert!(
@@ -358,17 +306,7 @@ fn bad_configs_and_save_paths_fail_before_training() {
         .map(|i| format!("{},0.2,0.1\n", i as f64 / 100.0))
         .collect();
     std::fs::write(&flat, format!("x1,x2,y\n{rows}")).unwrap();
-    let (ok, out, err) = osrl(&[
-        "lwpr",
-        "fit",
-        "--train",
-        s(&data),
-        "--test",
-        s(&flat),
-        "--inputs",
-        "2",
-        "--json",
-    ]);
+    let (ok, out, err) = fit2(&data, &flat, &["--json"]);
     assert!(ok, "{err}");
     assert!(err.contains("constant"), "{err}");
     assert!(last_json(&out)["nmse"][0].is_null());
