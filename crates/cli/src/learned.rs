@@ -61,7 +61,9 @@ pub fn save_model(path: &Path, learner: &Learner, sidecar: &Sidecar) -> Result<(
         .save(path)
         .with_context(|| format!("saving {}", path.display()))?;
     let side = sidecar_path(path);
-    std::fs::write(&side, serde_json::to_string_pretty(sidecar)? + "\n")
+    // As the learner: a failed write leaves any old sidecar whole.
+    let text = serde_json::to_string_pretty(sidecar)? + "\n";
+    lwpr::write_atomic(&side, text.as_bytes())
         .with_context(|| format!("writing {}", side.display()))
 }
 

@@ -168,12 +168,12 @@ fn fit(a: FitArgs) -> Result<()> {
     bar.finish_and_clear();
 
     let ev = evaluate(&mut model, &test)?;
-    let mut out = ev.json(&model, &test.names[k..]);
+    let mut out = ev.json();
     out["update_us"] = (util::median(update_ns) / 1e3).into();
     out["train_seconds"] = train_seconds.into();
     out["n_train"] = train.rows.len().into();
     out["epochs"] = a.epochs.into();
-    ev.report(&model, &test.names[k..], &out, a.json);
+    ev.report(&out, a.json);
     if let Some(p) = &a.save {
         model
             .save(p)
@@ -194,8 +194,7 @@ fn eval(a: EvalArgs) -> Result<()> {
         );
     }
     let ev = evaluate(&mut model, &test)?;
-    let out = ev.json(&model, &test.names[k..]);
-    ev.report(&model, &test.names[k..], &out, a.json);
+    ev.report(&ev.json(), a.json);
     Ok(())
 }
 
@@ -219,6 +218,10 @@ fn check_save_path(p: &Path) -> Result<()> {
 
 /// A model's predictions on a test table (inputs first, then the model's outputs).
 struct Evaluation {
+    /// Output column names.
+    outputs: Vec<String>,
+    /// The model's RF counts (one per output, or one when shared).
+    n_rfs: Vec<usize>,
     nmse: Vec<f64>,
     /// Test rows per output with no trustworthy RF active (predicted as 0).
     unsupported: Vec<usize>,
@@ -258,6 +261,8 @@ fn evaluate(model: &mut Lwpr, test: &Table) -> Result<Evaluation> {
         .map(|c| util::std_dev(&test.rows, c).powi(2))
         .collect();
     Ok(Evaluation {
+        outputs: test.names[k..].to_vec(),
+        n_rfs: model.n_rfs(),
         nmse: (0..n_out)
             .map(|o| {
                 if constant[o] {
@@ -277,12 +282,12 @@ fn evaluate(model: &mut Lwpr, test: &Table) -> Result<Evaluation> {
 
 impl Evaluation {
     /// The JSON keys both subcommands report.
-    fn json(&self, model: &Lwpr, outputs: &[String]) -> serde_json::Value {
+    fn json(&self) -> serde_json::Value {
         serde_json::json!({
             "nmse": self.nmse,
-            "n_rfs": model.n_rfs(),
+            "n_rfs": self.n_rfs,
             "predict_us": self.predict_us,
-            "outputs": outputs,
+            "outputs": self.outputs,
             "unsupported": self.unsupported,
             "non_finite": self.non_finite,
             "n_test": self.n_test,
@@ -291,8 +296,8 @@ impl Evaluation {
 
     /// Warnings (stderr) for undefined nMSEs, the table unless `json_only`, then `out` as the
     /// last stdout line.
-    fn report(&self, model: &Lwpr, outputs: &[String], out: &serde_json::Value, json_only: bool) {
-        for (o, name) in outputs.iter().enumerate() {
+    fn report(&self, out: &serde_json::Value, json_only: bool) {
+        for (o, name) in self.outputs.iter().enumerate() {
             if self.constant[o] {
                 eprintln!("warning: the test targets of {name} are constant: its nMSE is undefined (null)");
             }
@@ -308,8 +313,8 @@ impl Evaluation {
                 "{:<12} {:>10} {:>8} {:>12}",
                 "output", "nMSE", "RFs", "unsupported"
             );
-            let rfs = model.n_rfs();
-            for (o, name) in outputs.iter().enumerate() {
+            let rfs = &self.n_rfs;
+            for (o, name) in self.outputs.iter().enumerate() {
                 let r = rfs[if rfs.len() == 1 { 0 } else { o }];
                 println!(
                     "{:<12} {:>10.5} {:>8} {:>12}",
