@@ -27,6 +27,27 @@ pub enum LwprError {
         /// The value.
         value: f64,
     },
+    /// A finite input or output value is larger in magnitude than [`MAX_NORMALISED`] once
+    /// divided by its normalisation (`norm_in` for `x`, `norm_out` for `y`).
+    #[error(
+        "{what}[{index}] = {} is {} after dividing by norm_{io}[{index}] = {}; LWPR needs \
+         normalised values within ±{} (its update forms their squares and higher powers): set \
+         norm_{io} to the data's scale, e.g. \"std\"",
+        num(*value), num(*scaled), num(*norm), num(MAX_NORMALISED),
+        io = if *what == "x" { "in" } else { "out" }
+    )]
+    Scale {
+        /// Which argument (`"x"` or `"y"`).
+        what: &'static str,
+        /// Position of the offending value.
+        index: usize,
+        /// The value.
+        value: f64,
+        /// Its divisor.
+        norm: f64,
+        /// `value / norm`.
+        scaled: f64,
+    },
     /// No trustworthy receptive field has an activation above the cutoff for this input: the
     /// model has no support there (the reference library would silently return 0).
     #[error("no receptive field is active for output {output} at this input")]
@@ -68,6 +89,39 @@ pub(crate) fn check_vec(what: &'static str, v: &[f64], expected: usize) -> Resul
     }
     if let Some((index, &value)) = v.iter().enumerate().find(|(_, a)| !a.is_finite()) {
         return Err(LwprError::NonFinite { what, index, value });
+    }
+    Ok(())
+}
+
+/// Largest magnitude of a normalised input or output that [`crate::Lwpr::update`] accepts.
+///
+/// The update forms squares and higher powers of these values (its metric step, for example,
+/// multiplies squared errors by squared projections); outputs beyond about ±1e77 make a
+/// receptive field's state overflow to NaN (measured on the 2-D cross test), and ±1e40 leaves
+/// a margin for the other factors. Data normalised to its own scale is of order 1.
+pub const MAX_NORMALISED: f64 = 1e40;
+
+/// `v` as `Display` prints it when that is short, else in scientific notation.
+fn num(v: f64) -> String {
+    if v == 0.0 || (1e-4..1e6).contains(&v.abs()) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
+}
+
+/// Checks that every `v[i] / norm[i]` lies within ±[`MAX_NORMALISED`] (`v` finite, `norm` > 0).
+pub(crate) fn check_scale(what: &'static str, v: &[f64], norm: &[f64]) -> Result<(), LwprError> {
+    for (index, (&value, &n)) in v.iter().zip(norm).enumerate() {
+        if value.abs() > MAX_NORMALISED * n {
+            return Err(LwprError::Scale {
+                what,
+                index,
+                value,
+                norm: n,
+                scaled: value / n,
+            });
+        }
     }
     Ok(())
 }

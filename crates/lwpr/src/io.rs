@@ -183,7 +183,7 @@ fn check_sub(p: &Params, s: &SubModel) -> Result<(), String> {
             if mats.iter().any(|&l| l != r * nr) || vecs.iter().any(|&l| l != r) {
                 return Err("PLS model has inconsistent sizes".into());
             }
-            if !(finite(&o.u) && finite(&o.beta) && finite(&o.slope) && o.beta0.is_finite()) {
+            if !(o.predictors_finite() && finite(&o.slope)) {
                 return Err("PLS model has non-finite values".into());
             }
         }

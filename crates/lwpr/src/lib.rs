@@ -20,7 +20,13 @@
 //! - **read access to the partition** ([`Lwpr::activations`], [`Lwpr::rfs`], [`RfView`]) with
 //!   stable [`RfId`]s and [`RfEvent`]s when RFs are added or pruned, and removal of an RF by
 //!   its owner ([`Lwpr::remove_rf`], e.g. fields a learner never uses);
-//! - **no silent zero**: prediction without any active RF is [`LwprError::NoActiveRf`].
+//! - **no silent zero**: prediction without any active RF is [`LwprError::NoActiveRf`];
+//! - **numerical guards** in the update, counted in [`UpdateInfo`] and [`Lwpr::warnings`]:
+//!   samples beyond ±[`MAX_NORMALISED`] once normalised are refused ([`LwprError::Scale`]);
+//!   the metric terms of a sample whose leverage is not below 1 are skipped (the reference
+//!   step divides by `1 − h` there); an RF whose state stops being finite is removed and
+//!   announced as [`RfEvent::Pruned`]. Under fast forgetting with inputs that rarely move
+//!   (a robot at rest), the reference algorithm's RFs turn NaN; with the guards they do not.
 //!
 //! The reference library's accuracy benchmarks (the 2-D cross and its 21-D rotation) are in
 //! [`datasets`]; `osrl bench lwpr --json` runs them.
@@ -72,9 +78,9 @@ mod scratch;
 mod simd;
 
 pub use config::{Kernel, LwprConfig, MetricInit, Norm, NormKeyword, PruneRule};
-pub use error::LwprError;
+pub use error::{LwprError, MAX_NORMALISED};
 pub use io::{write_atomic, FORMAT_VERSION, MAGIC};
-pub use model::{Lwpr, UpdateInfo};
+pub use model::{Lwpr, UpdateInfo, Warnings};
 pub use params::Params;
 pub use partition::{Activation, LocalModel, RfEvent, RfId, RfView};
 pub use predict::Support;

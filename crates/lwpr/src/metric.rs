@@ -145,7 +145,14 @@ pub(crate) fn derivatives(
 /// One output's part of the metric gradient (the `∂J1/∂w` terms) from its PLS state after the
 /// regression step, with `s` the new projections, `e_cv` and `e` from that step (`ps`: scratch
 /// of the same length). Updates the memory traces `H`, `r`. Does nothing while
-/// `n_data[0]·(1 − λ[0]) ≤ 0.1`.
+/// `n_data[0]·(1 − λ[0]) ≤ 0.1`. Returns whether the guard below skipped the terms.
+///
+/// A numerical guard the reference library lacks: when the sample's leverage
+/// `h = w Σ_j s_j²/SSs2_j` is not below 1 (or is NaN), the leave-one-out factor `1/(1 − h)` is
+/// undefined and this output adds nothing (its traces are not updated either). A true leverage
+/// lies in `[0, 1)`; `h ≥ 1` arises because `s` comes from the projections just updated while
+/// `SSs2` was summed with the old ones, or when `SSs2` has decayed to nothing under fast
+/// forgetting (the division then gives `±∞` and the RF's state turns NaN).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 pub(crate) fn output_terms<const R: usize>(
@@ -158,7 +165,7 @@ pub(crate) fn output_terms<const R: usize>(
     e: f64,
     meta: bool,
     acc: &mut MetricAcc,
-) {
+) -> bool {
     let r = if R > 0 { R } else { pls.n_reg };
     let (n_data, ss_s2, lambda) = (&pls.n_data[..r], &pls.ss_s2[..r], &pls.lambda[..r]);
     let (h_tr, r_tr) = (&mut pls.h_tr[..r], &mut pls.r_tr[..r]);
@@ -166,7 +173,7 @@ pub(crate) fn output_terms<const R: usize>(
     let l0 = 1.0 - lambda[0];
     let ok = |j: usize| n_data[j] * l0 > 0.1;
     if !ok(0) {
-        return;
+        return false;
     }
     let mut h = 0.0;
     for j in 0..r {
@@ -195,6 +202,12 @@ pub(crate) fn output_terms<const R: usize>(
         }
     }
     dj1 /= big_w;
+    // The leverage guard (see above; false for a NaN `h` too), tested here so that the terms
+    // before it need not wait.
+    let leverage_ok = h < 1.0;
+    if !leverage_ok {
+        return true;
+    }
     if meta {
         let mut ddj1 = 2.0 * (e * e * h / w - e_cv2 / big_w) + big_e / (big_w * big_w);
         for j in 0..r {
@@ -215,6 +228,7 @@ pub(crate) fn output_terms<const R: usize>(
             r_tr[j] = lam * r_tr[j] + fr * s[j] * s[j] * t;
         }
     }
+    false
 }
 
 /// The gradient step on `M` (and the meta step on `α`), then `D = MᵀM`.

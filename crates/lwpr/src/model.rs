@@ -2,7 +2,7 @@
 
 use crate::activation::Top2;
 use crate::config::{LwprConfig, PruneRule};
-use crate::error::check_vec;
+use crate::error::{check_scale, check_vec};
 use crate::params::Params;
 use crate::partition::{RfEvent, RfId};
 use crate::rf::SubModel;
@@ -25,6 +25,8 @@ pub struct Lwpr {
     pub(crate) ws: Scratch,
     #[serde(skip)]
     pub(crate) events: Vec<RfEvent>,
+    #[serde(skip)]
+    pub(crate) warnings: Warnings,
 }
 
 /// What one update did.
@@ -40,6 +42,24 @@ pub struct UpdateInfo {
     /// RF updates done (RFs with activation above 0.001, summed over the sub-models); the
     /// cost of an update is roughly proportional to it.
     pub updated: usize,
+    /// Numerical guard: outputs of updated RFs whose distance-metric terms were skipped
+    /// because the sample's leverage was not below 1 (the leave-one-out cost is undefined
+    /// there; the reference library would divide by `1 − h ≤ 0`). Rare: about one RF update
+    /// in 60,000 on the 2-D cross test, more under fast forgetting.
+    pub metric_skipped: usize,
+    /// Numerical guard: RFs removed because their state stopped being finite (announced as
+    /// [`RfEvent::Pruned`]); add or prune is skipped in such an update.
+    pub removed_non_finite: usize,
+}
+
+/// Counts of the numerical guards' interventions since the model was created or loaded
+/// (not saved with it). See [`UpdateInfo`] for what each counts.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Warnings {
+    /// Sum of [`UpdateInfo::metric_skipped`].
+    pub metric_skipped: u64,
+    /// Sum of [`UpdateInfo::removed_non_finite`].
+    pub removed_non_finite: u64,
 }
 
 impl Lwpr {
@@ -54,6 +74,7 @@ impl Lwpr {
             n_updates: 0,
             ws,
             events: Vec::with_capacity(64),
+            warnings: Warnings::default(),
         })
     }
 
@@ -87,6 +108,11 @@ impl Lwpr {
         self.subs.iter().map(|s| s.rfs.len()).sum()
     }
 
+    /// How often the numerical guards stepped in since the model was created or loaded.
+    pub fn warnings(&self) -> Warnings {
+        self.warnings
+    }
+
     /// Number of updates so far.
     pub fn n_updates(&self) -> u64 {
         self.n_updates
@@ -98,11 +124,15 @@ impl Lwpr {
         &self.ws.last_yp
     }
 
-    /// Learns from one sample `(x, y)`. Fails without changing anything when a length is wrong
-    /// or a value is not finite. RF additions and removals are queued as [`RfEvent`]s.
+    /// Learns from one sample `(x, y)`. Fails without changing anything when a length is wrong,
+    /// a value is not finite, or a value exceeds [`MAX_NORMALISED`] in magnitude once divided
+    /// by its `norm_in`/`norm_out` ([`LwprError::Scale`]). RF additions and removals are queued
+    /// as [`RfEvent`]s.
     pub fn update(&mut self, x: &[f64], y: &[f64]) -> Result<UpdateInfo, LwprError> {
         check_vec("x", x, self.p.n_in)?;
         check_vec("y", y, self.p.n_out)?;
+        check_scale("x", x, &self.p.norm_in)?;
+        check_scale("y", y, &self.p.norm_out)?;
         let Lwpr {
             p,
             subs,
@@ -121,20 +151,26 @@ impl Lwpr {
             added: 0,
             pruned: 0,
             updated: 0,
+            metric_skipped: 0,
+            removed_non_finite: 0,
         };
         let ny = p.n_local_out();
         for (s, sub) in subs.iter_mut().enumerate() {
             let o0 = s * ny;
             let r = update_sub(p, sub, s, o0, ws, events, next_id);
-            info.max_w = info.max_w.max(r.0);
-            info.added += r.1 as usize;
-            info.pruned += r.2 as usize;
+            info.max_w = info.max_w.max(r.max_w);
+            info.added += r.added as usize;
+            info.pruned += r.pruned as usize;
             info.updated += ws.active.len();
+            info.metric_skipped += r.metric_skipped;
+            info.removed_non_finite += r.removed;
         }
         for o in 0..p.n_out {
             ws.last_yp[o] *= p.norm_out[o];
         }
         self.n_updates += 1;
+        self.warnings.metric_skipped += info.metric_skipped as u64;
+        self.warnings.removed_non_finite += info.removed_non_finite as u64;
         Ok(info)
     }
 
@@ -149,7 +185,22 @@ impl Lwpr {
     }
 }
 
-/// Updates sub-model `s` (outputs `o0..o0+ny` of `ws.yn`). Returns (max w, added, pruned).
+/// What the update of one sub-model did.
+#[derive(Clone, Copy, Debug, Default)]
+struct SubOutcome {
+    /// Largest activation of an existing RF.
+    max_w: f64,
+    /// An RF was added.
+    added: bool,
+    /// An RF was pruned.
+    pruned: bool,
+    /// Outputs of RFs whose metric terms the leverage guard skipped.
+    metric_skipped: usize,
+    /// RFs removed because their state stopped being finite.
+    removed: usize,
+}
+
+/// Updates sub-model `s` (outputs `o0..o0+ny` of `ws.yn`).
 ///
 /// The same code is compiled twice, once for the baseline target and once with AVX2 enabled
 /// (chosen at run time); vector instructions do the same IEEE operations in the same order,
@@ -162,7 +213,7 @@ fn update_sub(
     ws: &mut Scratch,
     events: &mut Vec<RfEvent>,
     next_id: &mut u64,
-) -> (f64, bool, bool) {
+) -> SubOutcome {
     #[cfg(target_arch = "x86_64")]
     if crate::simd::has_avx2() {
         // SAFETY: the CPU supports AVX2 (checked at run time).
@@ -181,7 +232,7 @@ unsafe fn update_sub_avx2(
     ws: &mut Scratch,
     events: &mut Vec<RfEvent>,
     next_id: &mut u64,
-) -> (f64, bool, bool) {
+) -> SubOutcome {
     update_sub_dims::<true>(p, sub, s, o0, ws, events, next_id)
 }
 
@@ -196,7 +247,7 @@ fn update_sub_dims<const AVX: bool>(
     ws: &mut Scratch,
     events: &mut Vec<RfEvent>,
     next_id: &mut u64,
-) -> (f64, bool, bool) {
+) -> SubOutcome {
     match (p.nk(), p.nr()) {
         (1, 1) => update_sub_impl::<1, 1, AVX>(p, sub, s, o0, ws, events, next_id),
         (2, 2) => update_sub_impl::<2, 2, AVX>(p, sub, s, o0, ws, events, next_id),
@@ -224,7 +275,7 @@ fn update_sub_impl<const NK: usize, const NR: usize, const AVX: bool>(
     ws: &mut Scratch,
     events: &mut Vec<RfEvent>,
     next_id: &mut u64,
-) -> (f64, bool, bool) {
+) -> SubOutcome {
     let nk = if NK > 0 { NK } else { p.nk() };
     let (ml, ny) = (p.mlen(), p.n_local_out());
     let diag = p.cfg.diag_only;
@@ -257,10 +308,17 @@ fn update_sub_impl<const NK: usize, const NR: usize, const AVX: bool>(
     } = top;
     ws.yacc[..ny].iter_mut().for_each(|v| *v = 0.0);
     let mut sum_w = 0.0;
+    let mut out = SubOutcome::default();
+    ws.diverged.clear();
+    ws.pls.skipped = 0;
     for a in 0..ws.active.len() {
         let (i, w, dwdq, ddwdqdq) = ws.active[a];
-        if crate::rf_update::update_rf::<NK, NR, AVX>(p, sub, i, w, dwdq, ddwdqdq, o0, ws) {
+        let r = crate::rf_update::update_rf::<NK, NR, AVX>(p, sub, i, w, dwdq, ddwdqdq, o0, ws);
+        if r.trusted && r.finite {
             sum_w += w;
+        }
+        if !r.finite {
+            ws.diverged.push(i);
         }
     }
     for o in 0..ny {
@@ -270,12 +328,29 @@ fn update_sub_impl<const NK: usize, const NR: usize, const AVX: bool>(
             f64::NAN
         };
     }
+    out.metric_skipped = ws.pls.skipped;
     // Add or prune (step 5).
     let w_max = if i1 < usize::MAX {
         w1.unwrap_or_else(|| p.kernel(q1).0)
     } else {
         0.0
     };
+    out.max_w = w_max;
+    if !ws.diverged.is_empty() {
+        // Numerical guard: RFs whose state diverged are removed (highest index first, so that
+        // `remove`'s swap leaves the others' indices valid); the indices of the two nearest
+        // RFs are stale now, so this update neither adds nor prunes.
+        ws.diverged.sort_unstable_by(|a, b| b.cmp(a));
+        for &i in &ws.diverged {
+            events.push(RfEvent::Pruned {
+                sub: s,
+                id: RfId(sub.rfs[i].id),
+            });
+            sub.remove(p, i);
+        }
+        out.removed = ws.diverged.len();
+        return out;
+    }
     if w_max <= p.cfg.w_gen {
         let template =
             (i1 < usize::MAX && w_max > 0.1 * p.cfg.w_gen && sub.rfs[i1].trustworthy).then_some(i1);
@@ -294,7 +369,11 @@ fn update_sub_impl<const NK: usize, const NR: usize, const AVX: bool>(
         if ws.act_out.capacity() < sub.rfs.len() {
             ws.act_out.reserve(sub.rfs.len());
         }
-        return (w_max, true, false);
+        if ws.diverged.capacity() < sub.rfs.len() {
+            ws.diverged.reserve(sub.rfs.len());
+        }
+        out.added = true;
+        return out;
     }
     if i2 < usize::MAX && w2.unwrap_or_else(|| p.kernel(q2).0) > p.cfg.w_prune {
         // The C library v1.2 removes the wider of the two (smaller trace of D; on a tie the
@@ -311,7 +390,7 @@ fn update_sub_impl<const NK: usize, const NR: usize, const AVX: bool>(
             id: RfId(sub.rfs[k].id),
         });
         sub.remove(p, k);
-        return (w_max, false, true);
+        out.pruned = true;
     }
-    (w_max, false, false)
+    out
 }

@@ -18,6 +18,9 @@ pub(crate) struct PlsScratch {
     pub xu: Vec<f64>,
     /// `s_j / SSs2_j` (metric step).
     pub ps: Vec<f64>,
+    /// Outputs whose metric terms the leverage guard skipped ([`crate::metric::output_terms`])
+    /// in the current sub-model update.
+    pub skipped: usize,
 }
 
 impl PlsScratch {
@@ -29,6 +32,7 @@ impl PlsScratch {
             s: vec![0.0; nr],
             e_cv: vec![0.0; nr],
             xu: vec![0.0; nr],
+            skipped: 0,
             ps: vec![0.0; nr],
         }
     }
@@ -92,6 +96,10 @@ pub(crate) struct RegOut {
     pub e_cv: f64,
     /// Residual of the updated model.
     pub e: f64,
+    /// The sum of every `β_j`, `p_j` and `u_j` the step computed: finite iff they all are (a
+    /// numerical guard: `β_j` and `p_j` divide by `SSs2_j`, which fast forgetting can let
+    /// decay to nothing; a finite sum that overflows is flagged too, such an RF has diverged).
+    pub chk: f64,
 }
 
 /// Steps (a, output part) and (b): updates `β₀` with `(ω, inv)` from the input means, then one
@@ -160,6 +168,8 @@ pub(crate) fn update_regression<const R: usize>(
         e_cv[j] = ymz - yres;
     }
     let mut ws2 = 0.0;
+    // Numerical guard (`RegOut::chk`).
+    let mut chk = 0.0;
     for j in 0..r {
         let lam = lambda[j];
         let lam_slow = 0.9 + 0.1 * lam;
@@ -178,18 +188,21 @@ pub(crate) fn update_regression<const R: usize>(
             let inv = 1.0 / norm2.sqrt();
             for (u, &v) in u[j * nr..(j + 1) * nr].iter_mut().zip(sxy.iter()) {
                 *u = v * inv;
+                chk += *u;
             }
         }
         ss_s2[j] = lam * ss_s2[j] + s[j] * wsj;
         ss_yres[j] = lam * ss_yres[j] + t * wsj;
         let inv_s2 = 1.0 / ss_s2[j];
         beta[j] = ss_yres[j] * inv_s2;
+        chk += beta[j];
         let ssx = &mut ssx[j * nr..(j + 1) * nr];
         let pj = &mut p[j * nr..(j + 1) * nr];
         for i in 0..nr {
             let v = lam * ssx[i] + wsj * xj[i];
             ssx[i] = v;
             pj[i] = v * inv_s2;
+            chk += pj[i];
         }
         ws2 += wsj * wsj * inv_s2;
     }
@@ -215,6 +228,7 @@ pub(crate) fn update_regression<const R: usize>(
         yp: ypred + pls.beta0,
         e_cv: e_cv_r,
         e,
+        chk,
     }
 }
 

@@ -58,6 +58,20 @@ pub(crate) struct Pls {
 }
 
 impl Pls {
+    /// Whether the parts a prediction reads — `β₀`, `β`, `u`, `p` — are all finite (what the
+    /// update's numerical guard and loading a saved model check).
+    #[inline(always)]
+    pub fn predictors_finite(&self) -> bool {
+        // Branch-free (an integer OR over the exponent tests, which vectorises): the update
+        // calls this for every RF it touches.
+        const EXP: u64 = 0x7ff0_0000_0000_0000;
+        let bad = |v: &[f64]| {
+            v.iter()
+                .fold(0u64, |a, x| a | ((x.to_bits() & EXP == EXP) as u64))
+        };
+        (bad(&self.u) | bad(&self.p) | bad(&self.beta) | bad(&[self.beta0])) == 0
+    }
+
     /// Recomputes `slope` if it is stale.
     #[inline(always)]
     pub fn refresh_slope(&mut self, nr: usize) {

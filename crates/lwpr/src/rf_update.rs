@@ -9,10 +9,20 @@ use crate::pls;
 use crate::rf::SubModel;
 use crate::scratch::Scratch;
 
+/// What [`update_rf`] reports about the RF it updated.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct RfOutcome {
+    /// The RF is trustworthy (its prediction was added to the blend).
+    pub trusted: bool,
+    /// Its predictions at the sample and its metric are finite; when not, its state has
+    /// diverged and the update removes it.
+    pub finite: bool,
+}
+
 /// Updates RF `i` of `sub` at activation `w` (kernel derivatives `dwdq`, `ddwdqdq`) with the
 /// sample in `ws` (outputs `o0..` of `ws.yn`); adds `w·ŷ_k` to `ws.yacc` when the RF is
-/// trustworthy, and returns whether it is. `NK`, `NR` > 0 fix the dimensions; `AVX` is set
-/// only by the update's AVX2 entry point (after the CPU check).
+/// trustworthy and `ŷ_k` is finite. `NK`, `NR` > 0 fix the dimensions; `AVX` is set only by
+/// the update's AVX2 entry point (after the CPU check).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 pub(crate) fn update_rf<const NK: usize, const NR: usize, const AVX: bool>(
@@ -24,7 +34,7 @@ pub(crate) fn update_rf<const NK: usize, const NR: usize, const AVX: bool>(
     ddwdqdq: f64,
     o0: usize,
     ws: &mut Scratch,
-) -> bool {
+) -> RfOutcome {
     let nk = if NK > 0 { NK } else { p.nk() };
     let nr = if NR > 0 { NR } else { p.nr() };
     let (ml, ny) = (p.mlen(), p.n_local_out());
@@ -37,21 +47,30 @@ pub(crate) fn update_rf<const NK: usize, const NR: usize, const AVX: bool>(
         rf.trustworthy = true;
     }
     let mut acc = MetricAcc::default();
+    // Numerical guard: the sum of the RF's predictions at the sample, of the PLS steps' results
+    // and (below) of the diagonal of `D` is finite iff all are.
+    let mut chk = 0.0;
     for (o, out) in rf.outs.iter_mut().enumerate() {
         // Two directions (the usual count at small dimensions) as a constant, so that the
         // loops over them unroll (the arithmetic is the same).
-        let yp = if NR > 0 && out.n_reg == 2 && !force_dynamic() {
+        let (yp, pls_chk) = if NR > 0 && out.n_reg == 2 && !force_dynamic() {
             output_step::<2>(p, out, nr, omega, y[o], w, &mut acc, &mut ws.pls)
         } else {
             output_step::<0>(p, out, nr, omega, y[o], w, &mut acc, &mut ws.pls)
         };
-        if rf.trustworthy {
+        // A diverged RF (removed by the caller) stays out of the blend. Its prediction at the
+        // sample may be finite while an untrusted direction is not.
+        chk += yp + pls_chk;
+        if rf.trustworthy && yp.is_finite() {
             ws.yacc[o] += w * yp;
         }
     }
     let trusted = rf.trustworthy;
     if acc.n == 0 {
-        return trusted;
+        return RfOutcome {
+            trusted,
+            finite: chk.is_finite(),
+        };
     }
     let c = &sub.centers[i * nk..(i + 1) * nk];
     for k in 0..nk {
@@ -74,12 +93,17 @@ pub(crate) fn update_rf<const NK: usize, const NR: usize, const AVX: bool>(
             ddwdqdq,
         };
         crate::metric_call::full_step_call::<NK, AVX>(nk, p, s, &mut ws.met);
-        return trusted;
+    } else {
+        let (meta, pen) = (p.cfg.meta, p.penalty_n);
+        metric::derivatives(nk, diag, meta, m, d, dwdq, ddwdqdq, pen, &mut ws.met);
+        metric::step(nk, p, m, d, alpha, b, hm, acc, &mut ws.met);
     }
-    let (meta, pen) = (p.cfg.meta, p.penalty_n);
-    metric::derivatives(nk, diag, meta, m, d, dwdq, ddwdqdq, pen, &mut ws.met);
-    metric::step(nk, p, m, d, alpha, b, hm, acc, &mut ws.met);
-    trusted
+    // A non-finite element of `M` (or an overflow of `D = MᵀM`) shows on the diagonal of `D`,
+    // a sum of squares of `M`'s column.
+    RfOutcome {
+        trusted,
+        finite: (chk + sub.trace_d(p, i)).is_finite(),
+    }
 }
 
 /// Tests can switch the constant-direction path off (per thread), to compare it with the
@@ -114,7 +138,8 @@ pub(crate) fn general_only() -> bool {
 }
 
 /// Steps (b), the metric's output terms, (e) and (f) of one output's PLS model `out` (`R` > 0:
-/// its number of directions, as a constant); returns the RF's prediction for that output.
+/// its number of directions, as a constant); returns the RF's prediction for that output and
+/// the PLS step's guard sum ([`pls::RegOut::chk`]).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn output_step<const R: usize>(
@@ -126,7 +151,7 @@ fn output_step<const R: usize>(
     w: f64,
     acc: &mut MetricAcc,
     ws: &mut pls::PlsScratch,
-) -> f64 {
+) -> (f64, f64) {
     // Two directions in two inputs: the PLS step on fixed-size arrays (the same arithmetic).
     let r = if R == 2 && nr == 2 {
         crate::rf_update_2d::regression_2d(out, omega, y, w, ws)
@@ -135,12 +160,14 @@ fn output_step<const R: usize>(
     };
     if p.cfg.update_d {
         let (sv, ps) = (&ws.s, &mut ws.ps);
-        metric::output_terms::<R>(out, nr, w, sv, ps, r.e_cv, r.e, p.cfg.meta, acc);
+        if metric::output_terms::<R>(out, nr, w, sv, ps, r.e_cv, r.e, p.cfg.meta, acc) {
+            ws.skipped += 1;
+        }
     }
     out.check_grow(p);
     // Over the directions as they are now (one may have just been added).
     pls::forget(out, p.cfg.tau_lambda, p.cfg.final_lambda);
     // The slope is recomputed when a prediction needs it (`Pls::refresh_slope`).
     out.slope_stale = true;
-    r.yp
+    (r.yp, r.chk)
 }

@@ -77,6 +77,8 @@ pub(crate) fn regression_2d(
         e_cv[j] = ymz - yres;
     }
     let mut ws2 = 0.0;
+    // Numerical guard (`pls::update_regression`): the sum of every `u`, `β`, `p` computed.
+    let mut chk = 0.0;
     for j in 0..2 {
         let lam = lambda[j];
         let lam_slow = 0.9 + 0.1 * lam;
@@ -93,16 +95,19 @@ pub(crate) fn regression_2d(
             let inv = 1.0 / norm2.sqrt();
             for k in 0..2 {
                 u[2 * j + k] = sxy[2 * j + k] * inv;
+                chk += u[2 * j + k];
             }
         }
         ss_s2[j] = lam * ss_s2[j] + s[j] * wsj;
         ss_yres[j] = lam * ss_yres[j] + t * wsj;
         let inv_s2 = 1.0 / ss_s2[j];
         beta[j] = ss_yres[j] * inv_s2;
+        chk += beta[j];
         for k in 0..2 {
             let v = lam * ssx[2 * j + k] + wsj * xj[k];
             ssx[2 * j + k] = v;
             p[2 * j + k] = v * inv_s2;
+            chk += p[2 * j + k];
         }
         ws2 += wsj * wsj * inv_s2;
     }
@@ -127,5 +132,6 @@ pub(crate) fn regression_2d(
         yp: ypred + *beta0,
         e_cv: e_cv_r,
         e,
+        chk,
     }
 }

@@ -21,6 +21,8 @@ pub(crate) struct Scratch {
     pub met: MetricScratch,
     /// RFs to update: (index, w, dw/dq, d²w/dq²).
     pub active: Vec<(usize, f64, f64, f64)>,
+    /// Indices of RFs whose state the update found non-finite (numerical guard).
+    pub diverged: Vec<usize>,
     /// Per-output accumulators (prediction sums).
     pub yacc: Vec<f64>,
     /// Per-output `Σ w ŷ_k²`.
@@ -74,6 +76,7 @@ impl Scratch {
             pls: PlsScratch::new(nr),
             met: MetricScratch::new(nk, p.mlen()),
             active: Vec::with_capacity(n_rf.max(64)),
+            diverged: Vec::with_capacity(n_rf.max(64)),
             yacc: vec![0.0; n_out],
             wyy: vec![0.0; n_out],
             wconf: vec![0.0; n_out],

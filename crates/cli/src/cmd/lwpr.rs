@@ -34,7 +34,10 @@ enum Sub {
     /// whole model), `train_seconds`, `outputs` (column names), `unsupported` (test rows per
     /// output where no trustworthy receptive field is active: predicted as 0, as the
     /// reference library does, and counted in the nMSE), `non_finite` (test rows per output
-    /// with a non-finite prediction), `n_train`, `n_test`, `epochs`.
+    /// with a non-finite prediction), `n_train`, `n_test`, `epochs`, and the counts of the
+    /// update's numerical guards: `metric_skipped` (metric terms skipped because a sample's
+    /// leverage was not below 1; rare) and `removed_non_finite` (receptive fields removed
+    /// because their state diverged; a warning on stderr when not 0).
     Fit(FitArgs),
     /// Test a model saved by `fit --save` on a CSV file (the model's inputs, then its outputs).
     ///
@@ -148,12 +151,13 @@ fn fit(a: FitArgs) -> Result<()> {
         order.shuffle(&mut rng);
         for &i in &order {
             let (x, y) = train.rows[i].split_at(k);
+            let row = || format!("{}: data row {}", train.path.display(), i + 1);
             if done.is_multiple_of(stride) {
                 let t = Instant::now();
-                model.update(x, y)?;
+                model.update(x, y).with_context(row)?;
                 update_ns.push(t.elapsed().as_nanos() as f64);
             } else {
-                model.update(x, y)?;
+                model.update(x, y).with_context(row)?;
             }
             done += 1;
             if done.is_multiple_of(1024) {
@@ -173,6 +177,16 @@ fn fit(a: FitArgs) -> Result<()> {
     out["train_seconds"] = train_seconds.into();
     out["n_train"] = train.rows.len().into();
     out["epochs"] = a.epochs.into();
+    let guards = model.warnings();
+    out["metric_skipped"] = guards.metric_skipped.into();
+    out["removed_non_finite"] = guards.removed_non_finite.into();
+    if guards.removed_non_finite > 0 {
+        eprintln!(
+            "warning: {} receptive fields diverged (non-finite state) and were removed during \
+             training; fast forgetting or meta learning on data that rarely moves can cause this",
+            guards.removed_non_finite
+        );
+    }
     ev.report(&out, a.json);
     if let Some(p) = &a.save {
         model
