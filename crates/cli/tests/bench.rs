@@ -35,6 +35,9 @@ fn bench_lwpr_reports_the_selected_tests() {
     );
     assert!(rfs.iter().all(|&n| (20..=45).contains(&n)), "{rfs:?}");
     assert!(c["update_us"].as_f64().unwrap() > 0.0 && c["predict_us"].as_f64().unwrap() > 0.0);
+    // The numerical guards' counts: no RF diverges on the standard tests.
+    assert!(c["metric_skipped"].is_u64(), "{c}");
+    assert_eq!(c["removed_non_finite"], 0, "{c}");
     let s = &v["sarcos7_invdyn"];
     assert_eq!(
         s["train"].as_u64().unwrap() + s["test"].as_u64().unwrap(),
@@ -43,6 +46,7 @@ fn bench_lwpr_reports_the_selected_tests() {
     assert_eq!(s["n_rfs_per_output"].as_array().unwrap().len(), 7);
     let e: Vec<f64> = serde_json::from_value(s["nmse"].clone()).unwrap();
     assert!(e.iter().all(|x| x.is_finite() && *x < 1.0), "{e:?}");
+    assert_eq!(s["removed_non_finite"], 0, "{s}");
 }
 
 #[test]

@@ -134,6 +134,8 @@ pub struct RunResult {
     pub update_us: f64,
     /// Wall-clock µs per prediction, mean over the test set.
     pub predict_us: f64,
+    /// The numerical guards' counts over the training ([`crate::Lwpr::warnings`]).
+    pub warnings: crate::Warnings,
 }
 
 /// Trains a one-output model on `train` for `epochs` epochs, each in a fresh order shuffled by
@@ -162,6 +164,7 @@ pub fn run(
         n_rfs: m.n_rfs_total(),
         update_us,
         predict_us,
+        warnings: m.warnings(),
     })
 }
 

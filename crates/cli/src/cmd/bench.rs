@@ -148,6 +148,9 @@ fn cross(a: &LwprArgs, cfg: &LwprConfig, epochs: usize, run: RunFn) -> Result<Va
         "predict_us": col(|r| r.predict_us),
         "nmse_all": runs.iter().map(|r| r.nmse).collect::<Vec<_>>(),
         "n_rfs_all": runs.iter().map(|r| r.n_rfs).collect::<Vec<_>>(),
+        // The numerical guards' counts, summed over the seeds (`lwpr::Warnings`).
+        "metric_skipped": runs.iter().map(|r| r.warnings.metric_skipped).sum::<u64>(),
+        "removed_non_finite": runs.iter().map(|r| r.warnings.removed_non_finite).sum::<u64>(),
     }))
 }
 
@@ -336,5 +339,7 @@ fn sarcos7(a: &LwprArgs) -> Result<Value> {
         "predict_us": predict_us,
         "nmse_mean": nmse.iter().sum::<f64>() / 7.0,
         "nmse": nmse,
+        "metric_skipped": m.warnings().metric_skipped,
+        "removed_non_finite": m.warnings().removed_non_finite,
     }))
 }
