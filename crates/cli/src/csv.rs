@@ -13,6 +13,8 @@ pub struct Table {
     pub names: Vec<String>,
     /// Data rows.
     pub rows: Vec<Vec<f64>>,
+    /// The file's line number (from 1) of each data row.
+    pub lines: Vec<usize>,
 }
 
 impl Table {
@@ -67,7 +69,7 @@ impl Table {
                 );
             }
         }
-        let mut rows = Vec::new();
+        let (mut rows, mut row_lines) = (Vec::new(), Vec::new());
         for (ln, line) in lines {
             let cells: Vec<&str> = line.split(',').map(str::trim).collect();
             if cells.len() != names.len() {
@@ -93,6 +95,7 @@ impl Table {
                 }
             }
             rows.push(row);
+            row_lines.push(ln);
         }
         if rows.is_empty() {
             bail!("{file}: no data rows after the header");
@@ -101,6 +104,7 @@ impl Table {
             path: path.to_path_buf(),
             names,
             rows,
+            lines: row_lines,
         })
     }
 

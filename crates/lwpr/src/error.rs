@@ -110,9 +110,16 @@ fn num(v: f64) -> String {
     }
 }
 
-/// Checks that every `v[i] / norm[i]` lies within ±[`MAX_NORMALISED`] (`v` finite, `norm` > 0).
-pub(crate) fn check_scale(what: &'static str, v: &[f64], norm: &[f64]) -> Result<(), LwprError> {
-    for (index, (&value, &n)) in v.iter().zip(norm).enumerate() {
+/// Checks that `v[i] / norm[i]` lies within ±[`MAX_NORMALISED`] for every `i` in `dims` (`v`
+/// finite, `norm` > 0).
+pub(crate) fn check_scale(
+    what: &'static str,
+    v: &[f64],
+    norm: &[f64],
+    dims: impl IntoIterator<Item = usize>,
+) -> Result<(), LwprError> {
+    for index in dims {
+        let (value, n) = (v[index], norm[index]);
         if value.abs() > MAX_NORMALISED * n {
             return Err(LwprError::Scale {
                 what,

@@ -24,9 +24,12 @@
 //! - **numerical guards** in the update, counted in [`UpdateInfo`] and [`Lwpr::warnings`]:
 //!   samples beyond ±[`MAX_NORMALISED`] once normalised are refused ([`LwprError::Scale`]);
 //!   the metric terms of a sample whose leverage is not below 1 are skipped (the reference
-//!   step divides by `1 − h` there); an RF whose state stops being finite is removed and
-//!   announced as [`RfEvent::Pruned`]. Under fast forgetting with inputs that rarely move
-//!   (a robot at rest), the reference algorithm's RFs turn NaN; with the guards they do not.
+//!   step divides by `1 − h` there); an RF whose prediction, regression or metric stops being
+//!   finite is removed and announced as [`RfEvent::Pruned`]. Under fast forgetting with
+//!   inputs that rarely move (a robot at rest), the reference algorithm's RFs turn NaN and
+//!   poison the predictions and saved models; with the guards they do not (an internal trace,
+//!   such as the meta-learning memory, may be non-finite for a while first: predictions do not
+//!   read it, and the RF goes once it reaches the metric).
 //!
 //! The reference library's accuracy benchmarks (the 2-D cross and its 21-D rotation) are in
 //! [`datasets`]; `osrl bench lwpr --json` runs them.

@@ -47,8 +47,9 @@ pub struct UpdateInfo {
     /// there; the reference library would divide by `1 − h ≤ 0`). Rare: about one RF update
     /// in 60,000 on the 2-D cross test, more under fast forgetting.
     pub metric_skipped: usize,
-    /// Numerical guard: RFs removed because their state stopped being finite (announced as
-    /// [`RfEvent::Pruned`]); add or prune is skipped in such an update.
+    /// Numerical guard: RFs removed because their prediction at the sample, their regression
+    /// (`β`, `p`, `u`) or their metric stopped being finite (announced as [`RfEvent::Pruned`]);
+    /// the sub-model concerned neither adds nor prunes in that update.
     pub removed_non_finite: usize,
 }
 
@@ -125,14 +126,16 @@ impl Lwpr {
     }
 
     /// Learns from one sample `(x, y)`. Fails without changing anything when a length is wrong,
-    /// a value is not finite, or a value exceeds [`MAX_NORMALISED`] in magnitude once divided
-    /// by its `norm_in`/`norm_out` ([`LwprError::Scale`]). RF additions and removals are queued
+    /// a value is not finite, or a value the model uses exceeds [`crate::MAX_NORMALISED`] in
+    /// magnitude once divided by its `norm_in`/`norm_out` ([`LwprError::Scale`]). RF additions and removals are queued
     /// as [`RfEvent`]s.
     pub fn update(&mut self, x: &[f64], y: &[f64]) -> Result<UpdateInfo, LwprError> {
         check_vec("x", x, self.p.n_in)?;
         check_vec("y", y, self.p.n_out)?;
-        check_scale("x", x, &self.p.norm_in)?;
-        check_scale("y", y, &self.p.norm_out)?;
+        // Inputs the model does not use (outside `kernel_dims` and `regression_dims`) are free.
+        let used = self.p.kdims.iter().chain(&self.p.rdims).copied();
+        check_scale("x", x, &self.p.norm_in, used)?;
+        check_scale("y", y, &self.p.norm_out, 0..y.len())?;
         let Lwpr {
             p,
             subs,
@@ -318,7 +321,7 @@ fn update_sub_impl<const NK: usize, const NR: usize, const AVX: bool>(
             sum_w += w;
         }
         if !r.finite {
-            ws.diverged.push(i);
+            ws.diverged.push(sub.rfs[i].id);
         }
     }
     for o in 0..ny {
@@ -337,14 +340,16 @@ fn update_sub_impl<const NK: usize, const NR: usize, const AVX: bool>(
     };
     out.max_w = w_max;
     if !ws.diverged.is_empty() {
-        // Numerical guard: RFs whose state diverged are removed (highest index first, so that
-        // `remove`'s swap leaves the others' indices valid); the indices of the two nearest
-        // RFs are stale now, so this update neither adds nor prunes.
-        ws.diverged.sort_unstable_by(|a, b| b.cmp(a));
-        for &i in &ws.diverged {
+        // Numerical guard: RFs whose state diverged are removed, each looked up by its id
+        // (`remove` moves the last RF into the gap); the indices of the two nearest RFs are
+        // stale now, so this sub-model neither adds nor prunes in this update.
+        for &id in &ws.diverged {
+            let i = (sub.rfs.iter())
+                .position(|rf| rf.id == id)
+                .expect("a diverged RF is in its sub-model");
             events.push(RfEvent::Pruned {
                 sub: s,
-                id: RfId(sub.rfs[i].id),
+                id: RfId(id),
             });
             sub.remove(p, i);
         }

@@ -58,8 +58,9 @@ pub(crate) struct Pls {
 }
 
 impl Pls {
-    /// Whether the parts a prediction reads — `β₀`, `β`, `u`, `p` — are all finite (what the
-    /// update's numerical guard and loading a saved model check).
+    /// Whether the parts a prediction reads — `β₀`, `β`, `u`, `p` — are all finite (what
+    /// loading a saved model checks; the update's guard sums the same values as its PLS step
+    /// computes them, `pls::RegOut::chk`).
     #[inline(always)]
     pub fn predictors_finite(&self) -> bool {
         // Branch-free (an integer OR over the exponent tests, which vectorises): the update

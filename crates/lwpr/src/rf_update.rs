@@ -21,7 +21,7 @@ pub(crate) struct RfOutcome {
 
 /// Updates RF `i` of `sub` at activation `w` (kernel derivatives `dwdq`, `ddwdqdq`) with the
 /// sample in `ws` (outputs `o0..` of `ws.yn`); adds `w·ŷ_k` to `ws.yacc` when the RF is
-/// trustworthy and `ŷ_k` is finite. `NK`, `NR` > 0 fix the dimensions; `AVX` is set only by
+/// trustworthy and its state stayed finite. `NK`, `NR` > 0 fix the dimensions; `AVX` is set only by
 /// the update's AVX2 entry point (after the CPU check).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
@@ -58,19 +58,13 @@ pub(crate) fn update_rf<const NK: usize, const NR: usize, const AVX: bool>(
         } else {
             output_step::<0>(p, out, nr, omega, y[o], w, &mut acc, &mut ws.pls)
         };
-        // A diverged RF (removed by the caller) stays out of the blend. Its prediction at the
-        // sample may be finite while an untrusted direction is not.
+        // Its prediction at the sample may be finite while an untrusted direction is not.
         chk += yp + pls_chk;
-        if rf.trustworthy && yp.is_finite() {
-            ws.yacc[o] += w * yp;
-        }
+        ws.rf_yp[o] = yp;
     }
     let trusted = rf.trustworthy;
     if acc.n == 0 {
-        return RfOutcome {
-            trusted,
-            finite: chk.is_finite(),
-        };
+        return blend(ws, ny, w, trusted, chk.is_finite());
     }
     let c = &sub.centers[i * nk..(i + 1) * nk];
     for k in 0..nk {
@@ -100,10 +94,20 @@ pub(crate) fn update_rf<const NK: usize, const NR: usize, const AVX: bool>(
     }
     // A non-finite element of `M` (or an overflow of `D = MᵀM`) shows on the diagonal of `D`,
     // a sum of squares of `M`'s column.
-    RfOutcome {
-        trusted,
-        finite: (chk + sub.trace_d(p, i)).is_finite(),
+    let finite = (chk + sub.trace_d(p, i)).is_finite();
+    blend(ws, ny, w, trusted, finite)
+}
+
+/// Adds the updated RF's `w·ŷ_k` (in `ws.rf_yp`) to the update's blend when it is trustworthy
+/// and its state stayed finite (a diverged RF, removed by the caller, stays out of it).
+#[inline(always)]
+fn blend(ws: &mut Scratch, ny: usize, w: f64, trusted: bool, finite: bool) -> RfOutcome {
+    if trusted && finite {
+        for (acc, &yp) in ws.yacc[..ny].iter_mut().zip(&ws.rf_yp[..ny]) {
+            *acc += w * yp;
+        }
     }
+    RfOutcome { trusted, finite }
 }
 
 /// Tests can switch the constant-direction path off (per thread), to compare it with the

@@ -21,10 +21,12 @@ pub(crate) struct Scratch {
     pub met: MetricScratch,
     /// RFs to update: (index, w, dw/dq, d²w/dq²).
     pub active: Vec<(usize, f64, f64, f64)>,
-    /// Indices of RFs whose state the update found non-finite (numerical guard).
-    pub diverged: Vec<usize>,
+    /// Ids of the RFs whose state the update found non-finite (numerical guard).
+    pub diverged: Vec<u64>,
     /// Per-output accumulators (prediction sums).
     pub yacc: Vec<f64>,
+    /// The predictions of the RF being updated, per output (normalised).
+    pub rf_yp: Vec<f64>,
     /// Per-output `Σ w ŷ_k²`.
     pub wyy: Vec<f64>,
     /// Per-output `Σ w σ_k²`.
@@ -78,6 +80,7 @@ impl Scratch {
             active: Vec::with_capacity(n_rf.max(64)),
             diverged: Vec::with_capacity(n_rf.max(64)),
             yacc: vec![0.0; n_out],
+            rf_yp: vec![0.0; n_out],
             wyy: vec![0.0; n_out],
             wconf: vec![0.0; n_out],
             y: vec![0.0; n_out],

@@ -104,6 +104,19 @@ fn values_too_large_once_normalised_are_refused() {
     m.update(&[0.1, MAX_NORMALISED], &[-MAX_NORMALISED])
         .unwrap();
 
+    // An input the model does not use is not checked.
+    let cfg = LwprConfig {
+        kernel_dims: Some(vec![0]),
+        regression_dims: Some(vec![0]),
+        ..Default::default()
+    };
+    let mut m = Lwpr::new(2, 1, &cfg).unwrap();
+    m.update(&[0.1, 1e300], &[0.0]).unwrap();
+    assert!(matches!(
+        m.update(&[-1e300, 0.0], &[0.0]),
+        Err(LwprError::Scale { index: 0, .. })
+    ));
+
     // Normalised by 1e10, the same output is 2e30: learnt, and the model stays sound.
     let cfg = LwprConfig {
         norm_out: Norm::Scalar(1e10),

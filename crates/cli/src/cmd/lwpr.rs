@@ -151,7 +151,7 @@ fn fit(a: FitArgs) -> Result<()> {
         order.shuffle(&mut rng);
         for &i in &order {
             let (x, y) = train.rows[i].split_at(k);
-            let row = || format!("{}: data row {}", train.path.display(), i + 1);
+            let row = || format!("{}:{}", train.path.display(), train.lines[i]);
             if done.is_multiple_of(stride) {
                 let t = Instant::now();
                 model.update(x, y).with_context(row)?;
