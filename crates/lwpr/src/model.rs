@@ -44,8 +44,9 @@ pub struct UpdateInfo {
     pub updated: usize,
     /// Numerical guard: outputs of updated RFs whose distance-metric terms were skipped
     /// because the sample's leverage was not below 1 (the leave-one-out cost is undefined
-    /// there; the reference library would divide by `1 − h ≤ 0`). Rare: about one RF update
-    /// in 60,000 on the 2-D cross test, more under fast forgetting.
+    /// there; the reference library would divide by `1 − h ≤ 0`). Rare: two over 100 seeds of
+    /// the 2-D cross test (about 6 million metric steps); common under fast forgetting with
+    /// inputs that rarely move.
     pub metric_skipped: usize,
     /// Numerical guard: RFs removed because their prediction at the sample, their regression
     /// (`β`, `p`, `u`) or their metric stopped being finite (announced as [`RfEvent::Pruned`]);
@@ -127,8 +128,8 @@ impl Lwpr {
 
     /// Learns from one sample `(x, y)`. Fails without changing anything when a length is wrong,
     /// a value is not finite, or a value the model uses exceeds [`crate::MAX_NORMALISED`] in
-    /// magnitude once divided by its `norm_in`/`norm_out` ([`LwprError::Scale`]). RF additions and removals are queued
-    /// as [`RfEvent`]s.
+    /// magnitude once divided by its `norm_in`/`norm_out` ([`LwprError::Scale`]). RF additions
+    /// and removals are queued as [`RfEvent`]s.
     pub fn update(&mut self, x: &[f64], y: &[f64]) -> Result<UpdateInfo, LwprError> {
         check_vec("x", x, self.p.n_in)?;
         check_vec("y", y, self.p.n_out)?;
@@ -344,7 +345,9 @@ fn update_sub_impl<const NK: usize, const NR: usize, const AVX: bool>(
         // (`remove` moves the last RF into the gap); the indices of the two nearest RFs are
         // stale now, so this sub-model neither adds nor prunes in this update.
         for &id in &ws.diverged {
-            let i = (sub.rfs.iter())
+            let i = sub
+                .rfs
+                .iter()
                 .position(|rf| rf.id == id)
                 .expect("a diverged RF is in its sub-model");
             events.push(RfEvent::Pruned {

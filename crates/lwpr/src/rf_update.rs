@@ -12,17 +12,17 @@ use crate::scratch::Scratch;
 /// What [`update_rf`] reports about the RF it updated.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct RfOutcome {
-    /// The RF is trustworthy (its prediction was added to the blend).
+    /// The RF is trustworthy (its prediction enters the blend if it is also `finite`).
     pub trusted: bool,
-    /// Its predictions at the sample and its metric are finite; when not, its state has
-    /// diverged and the update removes it.
+    /// Its predictions at the sample, its regression (`β`, `p`, `u`) and its metric are
+    /// finite; when not, its state has diverged and the update removes it.
     pub finite: bool,
 }
 
 /// Updates RF `i` of `sub` at activation `w` (kernel derivatives `dwdq`, `ddwdqdq`) with the
 /// sample in `ws` (outputs `o0..` of `ws.yn`); adds `w·ŷ_k` to `ws.yacc` when the RF is
-/// trustworthy and its state stayed finite. `NK`, `NR` > 0 fix the dimensions; `AVX` is set only by
-/// the update's AVX2 entry point (after the CPU check).
+/// trustworthy and its state stayed finite. `NK`, `NR` > 0 fix the dimensions; `AVX` is set
+/// only by the update's AVX2 entry point (after the CPU check).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 pub(crate) fn update_rf<const NK: usize, const NR: usize, const AVX: bool>(
