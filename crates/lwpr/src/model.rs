@@ -318,7 +318,7 @@ fn update_sub_impl<const NK: usize, const NR: usize, const AVX: bool>(
     for a in 0..ws.active.len() {
         let (i, w, dwdq, ddwdqdq) = ws.active[a];
         let r = crate::rf_update::update_rf::<NK, NR, AVX>(p, sub, i, w, dwdq, ddwdqdq, o0, ws);
-        if r.trusted && r.finite {
+        if r.blended {
             sum_w += w;
         }
         if !r.finite {

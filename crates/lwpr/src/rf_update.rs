@@ -12,8 +12,8 @@ use crate::scratch::Scratch;
 /// What [`update_rf`] reports about the RF it updated.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct RfOutcome {
-    /// The RF is trustworthy (its prediction enters the blend if it is also `finite`).
-    pub trusted: bool,
+    /// Its prediction entered the update's blend (`ws.yacc`): it is trustworthy and `finite`.
+    pub blended: bool,
     /// Its predictions at the sample, its regression (`β`, `p`, `u`) and its metric are
     /// finite; when not, its state has diverged and the update removes it.
     pub finite: bool,
@@ -102,12 +102,13 @@ pub(crate) fn update_rf<const NK: usize, const NR: usize, const AVX: bool>(
 /// and its state stayed finite (a diverged RF, removed by the caller, stays out of it).
 #[inline(always)]
 fn blend(ws: &mut Scratch, ny: usize, w: f64, trusted: bool, finite: bool) -> RfOutcome {
-    if trusted && finite {
+    let blended = trusted && finite;
+    if blended {
         for (acc, &yp) in ws.yacc[..ny].iter_mut().zip(&ws.rf_yp[..ny]) {
             *acc += w * yp;
         }
     }
-    RfOutcome { trusted, finite }
+    RfOutcome { blended, finite }
 }
 
 /// Tests can switch the constant-direction path off (per thread), to compare it with the
