@@ -77,6 +77,7 @@ mod predict;
 mod rf;
 mod rf_update;
 mod rf_update_2d;
+mod rf_update_group;
 mod scratch;
 mod simd;
 

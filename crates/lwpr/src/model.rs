@@ -315,7 +315,16 @@ fn update_sub_impl<const NK: usize, const NR: usize, const AVX: bool>(
     let mut out = SubOutcome::default();
     ws.diverged.clear();
     ws.pls.skipped = 0;
-    for a in 0..ws.active.len() {
+    let groups = crate::rf_update_group::applies::<NK, NR>(p) && !crate::rf_update::general_only();
+    let mut a = 0;
+    while a < ws.active.len() {
+        if groups {
+            // The 2-D cross test's shape: several RFs at a time (the same results).
+            a = crate::rf_update_group::update_groups(p, sub, a, o0, ws, &mut sum_w);
+            if a == ws.active.len() {
+                break;
+            }
+        }
         let (i, w, dwdq, ddwdqdq) = ws.active[a];
         let r = crate::rf_update::update_rf::<NK, NR, AVX>(p, sub, i, w, dwdq, ddwdqdq, o0, ws);
         if r.blended {
@@ -324,6 +333,7 @@ fn update_sub_impl<const NK: usize, const NR: usize, const AVX: bool>(
         if !r.finite {
             ws.diverged.push(sub.rfs[i].id);
         }
+        a += 1;
     }
     for o in 0..ny {
         ws.last_yp[o0 + o] = if sum_w > 0.0 {

@@ -89,6 +89,7 @@ pub(crate) fn project(
 }
 
 /// Outcome of [`update_regression`] for one output.
+#[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct RegOut {
     /// The RF's prediction `β₀ + Σ β_j s_j` (normalised), before this update's forgetting step.
     pub yp: f64,

@@ -39,9 +39,24 @@ pub(crate) fn regression_2d(
     w: f64,
     ws: &mut PlsScratch,
 ) -> RegOut {
+    let (r, sn) = regression_2d_core(out, omega, y, w, *arr::<2>(&mut ws.xmz));
+    *arr(&mut ws.s) = sn;
+    r
+}
+
+/// [`regression_2d`] on `x̃ = xmz` (a copy of the input), returning the new projections
+/// instead of writing them to the scratch: what [`crate::rf_update_pair`] calls for each of
+/// its two RFs.
+#[inline(always)]
+pub(crate) fn regression_2d_core(
+    out: &mut Pls,
+    omega: f64,
+    y: f64,
+    w: f64,
+    xmz: [f64; 2],
+) -> (RegOut, [f64; 2]) {
     #[cfg(test)]
     crate::tests::rf_2d::TAKEN.with(|n| n.set(n.get() + 1));
-    let xmz = *arr::<2>(&mut ws.xmz);
     let n_data = *arr::<2>(&mut out.n_data);
     let lambda = *arr::<2>(&mut out.lambda);
     out.beta0 = (omega * out.beta0 + w * y) / (omega + w);
@@ -127,11 +142,11 @@ pub(crate) fn regression_2d(
             sum_e_cv2[j] = sum_e_cv2[j] * lambda[j] + w * e_cv[j] * e_cv[j];
         }
     }
-    *arr(&mut ws.s) = sn;
-    RegOut {
+    let r = RegOut {
         yp: ypred + *beta0,
         e_cv: e_cv_r,
         e,
         chk,
-    }
+    };
+    (r, sn)
 }

@@ -5,6 +5,7 @@ pub(crate) mod activation;
 pub(crate) mod const_r;
 mod derivatives;
 mod fused;
+pub(crate) mod group;
 mod guard;
 mod pls_exact;
 pub(crate) mod rf_2d;

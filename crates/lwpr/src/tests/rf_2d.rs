@@ -26,20 +26,21 @@ thread_local! {
     pub(crate) static HALVED: Cell<u64> = const { Cell::new(0) };
 }
 
-/// What a run gives: the saved model, its predictions on a fixed set of inputs, and the
-/// counts of 2-D updates, halved steps and pruned RFs.
-type Run = (Vec<u8>, Vec<u64>, u64, u64, usize);
+/// What a run gives: the saved model, the predictions of every update and then of the model
+/// on a fixed set of inputs, and the counts of 2-D updates, halved steps and pruned RFs.
+pub(crate) type Run = (Vec<u8>, Vec<u64>, u64, u64, usize);
 
 /// Trains `m` on `n` samples (seed `seed`) with the 2-D path on or off. Targets: the cross
 /// function of inputs 0 and 1 plus a linear term in the last input, with noise; a second
 /// output, if any, is its negative plus the first input.
-fn train(general: bool, m: &mut Lwpr, seed: u64, n: usize) -> Run {
+pub(crate) fn train(general: bool, m: &mut Lwpr, seed: u64, n: usize) -> Run {
     let (n_in, n_out) = (m.params().n_in, m.params().n_out);
     FORCE_DYNAMIC.with(|f| f.set(general));
     TAKEN.with(|c| c.set(0));
     HALVED.with(|c| c.set(0));
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let mut pruned = 0;
+    let mut preds = Vec::new();
     let f = |x: &[f64]| {
         let (a, b) = (x[0], x[1]);
         let cross = (-10.0 * a * a)
@@ -52,9 +53,12 @@ fn train(general: bool, m: &mut Lwpr, seed: u64, n: usize) -> Run {
         let x: Vec<f64> = (0..n_in).map(|_| rng.random_range(-1.0..1.0)).collect();
         let y0 = f(&x) + 0.1 * rng.random_range(-1.0..1.0);
         let y = [y0, x[0] - y0];
-        pruned += m.update(&x, &y[..n_out]).unwrap().pruned;
+        let info = m.update(&x, &y[..n_out]).unwrap();
+        pruned += info.pruned;
+        // The update's own prediction (its blend of the updated RFs) and its guard count.
+        preds.extend(m.last_update_prediction().iter().map(|v| v.to_bits()));
+        preds.push(info.metric_skipped as u64);
     }
-    let mut preds = Vec::new();
     for k in 0..200 {
         let x: Vec<f64> = (0..n_in)
             .map(|i| ((k * (i + 3)) % 41) as f64 / 20.0 - 1.0)
