@@ -9,7 +9,9 @@
 //! roots, `exp`), longer than the CPU's reorder window, so one RF's steps barely overlapped the
 //! next one's. Interleaved by steps, neighbouring steps belong to different RFs and are
 //! independent. Measured (fingerprint, 2-D cross, seed 0, 20 epochs, 16 interleaved runs): the
-//! update 9.6 % faster (median ratio 0.904), with 1 % fewer instructions.
+//! update about 9 % faster when the machine is quiet (median ratios 0.904–0.913), about 1 %
+//! when a neighbour shares the core; 2.4 % fewer instructions (`crates/lwpr/README.md`,
+//! ninth round).
 
 use crate::metric::{self, MetricAcc};
 use crate::metric_2d::{step_2d, MetricState};
