@@ -1,12 +1,11 @@
 //! The grouped RF updates of the 2-D shape (`rf_update_group`) against the same RFs updated one
-//! at a time by the 2-D code, bit for bit: saved models and predictions after training, for the
-//! configurations that group (meta learning on and off, metric learning off, fast forgetting,
-//! pruning, a kernel and a regression on different input pairs, shared RFs with one output), a
-//! model whose RFs diverge, and a model where some RFs have one direction (they are updated
-//! alone, the others still in groups). Both group sizes must have run.
+//! at a time by the 2-D code, bit for bit: saved models, every update's own prediction and
+//! guard count, and predictions after training, for every configuration of the 2-D path's
+//! tests (`rf_2d::cases`), a model whose RFs diverge, and a model where some RFs have one
+//! direction (they are updated alone, the others still in groups). Both group sizes must have
+//! run where the shape groups.
 
-use super::rf_2d::{train, Run};
-use crate::config::LwprConfig;
+use super::rf_2d::{cases, train, Run};
 use crate::datasets::cross_config;
 use crate::model::Lwpr;
 use crate::rf::Pls;
@@ -37,80 +36,43 @@ fn run(off: bool, m: &mut Lwpr, seed: u64, n: usize) -> (Run, [u64; 2]) {
     (r, GROUPS.with(|c| c.get()))
 }
 
-/// Asserts that grouped and one-at-a-time training agree and that both group sizes ran.
-fn compare(name: &str, mk: impl Fn() -> Lwpr, seed: u64, n: usize) {
+/// Asserts that grouped and one-at-a-time training agree and that both group sizes ran (none
+/// when `grouped` is false: the shape does not group).
+fn compare(name: &str, grouped: bool, mk: impl Fn() -> Lwpr, seed: u64, n: usize) {
     let (g, counts) = run(false, &mut mk(), seed, n);
     let (s, none) = run(true, &mut mk(), seed, n);
     assert_eq!(none, [0, 0], "{name}: grouped with the switch off");
-    assert!(
-        counts[0] > 100 && counts[1] > 100,
-        "{name}: groups of two and three ran {counts:?} times: the test misses its case"
-    );
+    if grouped {
+        assert!(
+            counts[0] > 100 && counts[1] > 100,
+            "{name}: groups of two and three ran {counts:?} times: the test misses its case"
+        );
+    } else {
+        assert_eq!(
+            counts,
+            [0, 0],
+            "{name}: grouped a shape that does not group"
+        );
+    }
     assert!(g.1.len() > 150, "{name}: too few predictions");
     assert!(g.0 == s.0, "{name}: the saved models differ");
     assert_eq!(g.1, s.1, "{name}: the predictions differ");
     assert_eq!(g.4, s.4, "{name}: pruned RFs differ");
 }
 
+/// Every configuration of the 2-D path's tests (`rf_2d::cases`); all group but shared RFs
+/// with two outputs (one partition regressing both: two outputs per RF).
 #[test]
 fn grouped_updates_match_one_at_a_time() {
-    let b = cross_config();
-    let cases: Vec<(&str, usize, LwprConfig)> = vec![
-        ("cross, meta", 2, b.clone()),
-        (
-            "no meta",
-            2,
-            LwprConfig {
-                meta: false,
-                ..b.clone()
-            },
-        ),
-        (
-            "no metric learning",
-            2,
-            LwprConfig {
-                update_d: false,
-                ..b.clone()
-            },
-        ),
-        (
-            "very fast forgetting",
-            2,
-            LwprConfig {
-                init_lambda: 0.9,
-                final_lambda: 0.95,
-                tau_lambda: 0.99,
-                ..b.clone()
-            },
-        ),
-        (
-            "pruning",
-            2,
-            LwprConfig {
-                w_prune: 0.5,
-                ..b.clone()
-            },
-        ),
-        (
-            "kernel on (0, 1), regression on (1, 2)",
-            3,
-            LwprConfig {
-                kernel_dims: Some(vec![0, 1]),
-                regression_dims: Some(vec![1, 2]),
-                ..b.clone()
-            },
-        ),
-        (
-            "shared RFs",
-            2,
-            LwprConfig {
-                shared_rfs: true,
-                ..b.clone()
-            },
-        ),
-    ];
-    for (name, n_in, cfg) in cases {
-        compare(name, || Lwpr::new(n_in, 1, &cfg).unwrap(), 11, 3000);
+    for (name, n_in, n_out, cfg) in cases() {
+        let grouped = !(cfg.shared_rfs && n_out > 1);
+        compare(
+            name,
+            grouped,
+            || Lwpr::new(n_in, n_out, &cfg).unwrap(),
+            11,
+            3000,
+        );
     }
 }
 
@@ -130,6 +92,7 @@ fn rfs_with_one_direction_are_updated_alone() {
     let bytes = m.to_bytes();
     compare(
         "one direction",
+        true,
         || Lwpr::from_bytes(&bytes).unwrap(),
         6,
         1500,

@@ -89,10 +89,10 @@ fn base() -> LwprConfig {
     crate::datasets::cross_config()
 }
 
-#[test]
-fn the_2d_update_matches_the_general_path() {
+/// The configurations the 2-D path takes: (name, inputs, outputs, config).
+pub(crate) fn cases() -> Vec<(&'static str, usize, usize, LwprConfig)> {
     let b = base();
-    let cases: Vec<(&str, usize, usize, LwprConfig)> = vec![
+    vec![
         ("cross, meta", 2, 1, b.clone()),
         (
             "no meta",
@@ -185,9 +185,13 @@ fn the_2d_update_matches_the_general_path() {
                 ..b.clone()
             },
         ),
-    ];
+    ]
+}
+
+#[test]
+fn the_2d_update_matches_the_general_path() {
     let mut halved = 0;
-    for (name, n_in, n_out, cfg) in cases {
+    for (name, n_in, n_out, cfg) in cases() {
         let run = |general| {
             train(
                 general,
