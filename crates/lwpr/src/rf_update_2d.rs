@@ -45,8 +45,8 @@ pub(crate) fn regression_2d(
 }
 
 /// [`regression_2d`] on `x̃ = xmz` (a copy of the input), returning the new projections
-/// instead of writing them to the scratch: what [`crate::rf_update_pair`] calls for each of
-/// its two RFs.
+/// instead of writing them to the scratch: what [`crate::rf_update_group`] calls for each RF
+/// of a group.
 #[inline(always)]
 pub(crate) fn regression_2d_core(
     out: &mut Pls,

@@ -1,9 +1,11 @@
 //! The RF updates of the 2-D cross test's shape — kernel and regression on two inputs, full
 //! metric, one output per sub-model, two PLS directions — taken three (or two) RFs at a time:
 //! each step of [`crate::rf_update::update_rf`] (means, PLS, cost terms, metric step, guard and
-//! blend) is taken for every RF of the group before the next step, calling the same 2-D code
-//! per RF. The results are those of the RFs updated one after the other, bit for bit (each RF's
-//! arithmetic is its own; the blend adds in the RFs' order; tested in `tests/group.rs`).
+//! blend) is taken for every RF of the group before the next step. The means, the PLS step, the
+//! cost terms, forgetting and the metric step are the 2-D code `update_rf` calls; the trust
+//! test, the guard's sum and the blend are written out here, as there. The results are those
+//! of the RFs updated one after the other, bit for bit (each RF's arithmetic is its own; the
+//! blend adds in the RFs' order; tested in `tests/group.rs`).
 //!
 //! Why: a 2-D RF update is ≈ 1,000 instructions of mostly serial arithmetic (divisions, square
 //! roots, `exp`), longer than the CPU's reorder window, so one RF's steps barely overlapped the
@@ -45,16 +47,21 @@ pub(crate) fn update_groups(
     sum_w: &mut f64,
 ) -> usize {
     loop {
-        let left = ws.active.len() - a;
-        let done = match left {
-            0 | 1 => false,
-            2 | 4 => group::<2>(p, sub, a, o0, ws, sum_w),
-            _ => group::<3>(p, sub, a, o0, ws, sum_w),
+        // The group's size, decided once (four left: two pairs, not three and one alone).
+        let g = match ws.active.len() - a {
+            0 | 1 => return a,
+            2 | 4 => 2,
+            _ => 3,
+        };
+        let done = if g == 2 {
+            group::<2>(p, sub, a, o0, ws, sum_w)
+        } else {
+            group::<3>(p, sub, a, o0, ws, sum_w)
         };
         if !done {
             return a;
         }
-        a += if left == 2 || left == 4 { 2 } else { 3 };
+        a += g;
     }
 }
 
@@ -91,9 +98,10 @@ fn group<const G: usize>(
 
 /// Updates the RFs `act[l]` (index, w, dw/dq, d²w/dq², distinct indices) of `sub`, each with
 /// two directions, as [`crate::rf_update::update_rf`] would one after the other, their steps
-/// interleaved; adds their predictions to the blend (`ws.yacc`) in order.
+/// interleaved; adds the predictions of those trustworthy and finite to the blend (`ws.yacc`)
+/// in order.
 #[inline(always)]
-pub(crate) fn update_group_2d<const L: usize>(
+fn update_group_2d<const L: usize>(
     p: &Params,
     sub: &mut SubModel,
     act: [(usize, f64, f64, f64); L],
@@ -102,6 +110,7 @@ pub(crate) fn update_group_2d<const L: usize>(
 ) -> [RfOutcome; L] {
     let ii = act.map(|a| a.0);
     let w = act.map(|a| a.1);
+    let (dwdq, ddwdqdq) = (act.map(|a| a.2), act.map(|a| a.3));
     let y = ws.yn[o0];
     let xr = *arr::<2>(&mut ws.xr);
     let xk = *arr::<2>(&mut ws.xk);
@@ -115,23 +124,23 @@ pub(crate) fn update_group_2d<const L: usize>(
     let Ok(mut rf) = rfs.get_disjoint_mut(ii) else {
         unreachable!("the active RFs are distinct")
     };
-    // (a) Means, and the trust test.
+    // (a) Means, and the trust test (`n_data > 2·nr`, as `update_rf`).
     let mut omega = [0.0; L];
     let mut xmz = [[0.0; 2]; L];
     for l in 0..L {
         omega[l] = rf[l].outs[0].sum_w[0] * rf[l].outs[0].lambda[0];
         pls::update_input_means(2, rf[l], omega[l], &xr, w[l], &mut xmz[l]);
-        if rf[l].outs[0].n_data[0] > 4.0 {
+        if rf[l].outs[0].n_data[0] > 2.0 * 2.0 {
             rf[l].trustworthy = true;
         }
     }
-    // (b) PLS.
+    // (b) The PLS step.
     let mut reg = [RegOut::default(); L];
     let mut sn = [[0.0; 2]; L];
     for l in 0..L {
         (reg[l], sn[l]) = regression_2d_core(&mut rf[l].outs[0], omega[l], y, w[l], xmz[l]);
     }
-    // Cost terms, growth test, forgetting.
+    // The cost terms of (d), (e) the growth test and (f) forgetting (`output_step`).
     let mut acc = [MetricAcc::default(); L];
     let mut ps = [[0.0; 2]; L];
     for l in 0..L {
@@ -171,7 +180,7 @@ pub(crate) fn update_group_2d<const L: usize>(
             b: arr(&mut r.b),
             hm: arr(&mut r.hm),
         };
-        step_2d(p, st, acc[l], dx, act[l].2, act[l].3);
+        step_2d(p, st, acc[l], dx, dwdq[l], ddwdqdq[l]);
     }
     let trusted = rf.each_mut().map(|r| r.trustworthy);
     // Guards and the blend, in the RFs' order.

@@ -11,7 +11,8 @@ use std::cell::Cell;
 thread_local! {
     /// Set: every output takes the general path (see `rf_update::force_dynamic`).
     pub(crate) static FORCE_DYNAMIC: Cell<bool> = const { Cell::new(false) };
-    /// Outputs that took the constant-direction path (counted when it is not switched off).
+    /// Outputs that took the constant-direction path (counted when it is not switched off;
+    /// 2-D RFs updated in groups, `rf_update_group`, are not counted).
     pub(crate) static FAST_PATH_TAKEN: Cell<u64> = const { Cell::new(0) };
 }
 

@@ -6,9 +6,10 @@
 //! run where the shape groups.
 
 use super::rf_2d::{cases, train, Run};
+use crate::config::LwprConfig;
 use crate::datasets::cross_config;
 use crate::model::Lwpr;
-use crate::rf::Pls;
+use crate::rf::{Pls, Rf};
 use std::cell::Cell;
 
 thread_local! {
@@ -58,6 +59,11 @@ fn compare(name: &str, grouped: bool, mk: impl Fn() -> Lwpr, seed: u64, n: usize
     assert!(g.0 == s.0, "{name}: the saved models differ");
     assert_eq!(g.1, s.1, "{name}: the predictions differ");
     assert_eq!(g.4, s.4, "{name}: pruned RFs differ");
+    assert_eq!(
+        (g.2, g.3),
+        (s.2, s.3),
+        "{name}: 2-D steps or halvings differ"
+    );
 }
 
 /// Every configuration of the 2-D path's tests (`rf_2d::cases`); all group but shared RFs
@@ -99,17 +105,15 @@ fn rfs_with_one_direction_are_updated_alone() {
     );
 }
 
-/// RFs whose state diverges inside a group are removed as when updated alone: a model with
-/// an infinite `SSYres` in every third RF.
-#[test]
-fn diverging_rfs_in_groups_are_removed_alike() {
-    let cfg = cross_config();
-    let mut m = Lwpr::new(2, 1, &cfg).unwrap();
+/// Trains a cross model (`cfg`), applies `poison` to every third RF, trains on with and
+/// without grouping and compares; most poisoned RFs must have been removed.
+fn poison_and_compare(name: &str, cfg: &LwprConfig, poison: impl Fn(&mut Rf)) {
+    let mut m = Lwpr::new(2, 1, cfg).unwrap();
     train(false, &mut m, 5, 1500);
     let mut poisoned = Vec::new();
     for (k, rf) in m.subs[0].rfs.iter_mut().enumerate() {
         if k % 3 == 0 {
-            rf.outs[0].ss_yres[0] = f64::INFINITY;
+            poison(rf);
             poisoned.push(rf.id);
         }
     }
@@ -122,9 +126,28 @@ fn diverging_rfs_in_groups_are_removed_alike() {
         .count();
     assert!(
         left + 5 < poisoned.len(),
-        "{left} of {} poisoned RFs left: the test misses its case",
+        "{name}: {left} of {} poisoned RFs left: the test misses its case",
         poisoned.len()
     );
-    assert!(g.0 == s.0, "the saved models differ");
-    assert_eq!(g.1, s.1, "the predictions differ");
+    assert!(g.0 == s.0, "{name}: the saved models differ");
+    assert_eq!(g.1, s.1, "{name}: the predictions differ");
+}
+
+/// RFs whose state diverges inside a group are removed as when updated alone, for each part
+/// of the guard: the prediction (an infinite `SSYres` of the first direction), the metric
+/// alone with finite predictions (infinite learning rates, meta learning off), and a
+/// direction that does not predict yet (the second, with `n_data₁ = 2`).
+#[test]
+fn diverging_rfs_in_groups_are_removed_alike() {
+    let b = cross_config();
+    poison_and_compare("prediction", &b, |rf| rf.outs[0].ss_yres[0] = f64::INFINITY);
+    let no_meta = LwprConfig {
+        meta: false,
+        ..b.clone()
+    };
+    poison_and_compare("metric", &no_meta, |rf| rf.alpha.fill(f64::INFINITY));
+    poison_and_compare("second direction", &b, |rf| {
+        rf.outs[0].ss_yres[1] = f64::INFINITY;
+        rf.outs[0].n_data[1] = 2.0;
+    });
 }
