@@ -142,6 +142,38 @@ fn bench_lwpr_cross21_embeds_with_or_without_the_rotation() {
     assert!(!ok && err.contains("shear"), "{err}");
 }
 
+/// `--cross21-dim` embeds the same points in another dimension (the Matlab test's 25) and
+/// reports it as `dim`.
+#[test]
+fn bench_lwpr_cross21_dim() {
+    let run = |dim: &str| {
+        let args = [
+            "bench",
+            "lwpr",
+            "--only",
+            "cross21",
+            "--seeds",
+            "1",
+            "--cross21-epochs",
+            "1",
+            "--cross21-dim",
+            dim,
+            "--json",
+        ];
+        let (ok, out, err) = osrl(&args);
+        assert!(ok, "{err}");
+        last_json(&out)["cross_21d"].clone()
+    };
+    let (d21, d25) = (run("21"), run("25"));
+    assert_eq!(
+        (d21["dim"].as_u64(), d25["dim"].as_u64()),
+        (Some(21), Some(25))
+    );
+    let e = |c: &serde_json::Value| c["nmse"].as_f64().unwrap();
+    assert!(e(&d25).is_finite() && e(&d25) > 0.0);
+    assert_ne!(e(&d21), e(&d25), "another rotation, another fit");
+}
+
 #[test]
 fn bench_lwpr_rejects_bad_arguments() {
     for (args, says) in [
@@ -161,6 +193,10 @@ fn bench_lwpr_rejects_bad_arguments() {
         (
             &["bench", "lwpr", "--only", "cross2", "--cross2-epochs", "0"],
             "--cross2-epochs",
+        ),
+        (
+            &["bench", "lwpr", "--only", "cross21", "--cross21-dim", "1"],
+            "--cross21-dim",
         ),
         (
             &[

@@ -266,7 +266,25 @@ pub fn cross21_embedded_run(
     epochs: usize,
     e: Embedding,
 ) -> Result<RunResult, LwprError> {
-    let (train, test, _) = cross21_data(seed, e);
+    cross_nd_run(cfg, seed, epochs, 21, e)
+}
+
+/// [`cross21_embedded_run`] in `d ≥ 2` dimensions (the reference library's Matlab test
+/// `test_lwpr_nD.m` uses 25; issue 4 uses 21). Fails for `d < 2` or a config `cfg` that does
+/// not fit `d` inputs.
+pub fn cross_nd_run(
+    cfg: &LwprConfig,
+    seed: u64,
+    epochs: usize,
+    d: usize,
+    e: Embedding,
+) -> Result<RunResult, LwprError> {
+    if d < 2 {
+        return Err(LwprError::Config(format!(
+            "the cross test needs at least 2 dimensions, got {d}"
+        )));
+    }
+    let (train, test, _) = cross_nd_data(seed, d, e);
     run(cfg, &train, &test, epochs, seed)
 }
 
@@ -275,11 +293,21 @@ pub fn cross21_embedded_run(
 /// that embeds them (`x = R · [x₁, x₂, 0, …]`; drawn after the points, so both embeddings of
 /// a seed share them; the identity for [`Embedding::Identity`]).
 pub fn cross21_data(seed: u64, e: Embedding) -> (Data, Data, DMatrix<f64>) {
+    cross_nd_data(seed, 21, e)
+}
+
+/// [`cross21_data`] in `d ≥ 2` dimensions (`R` is `d × d`; the 2-D points are the same for
+/// every `d`). Panics for `d < 2`.
+pub fn cross_nd_data(seed: u64, d: usize, e: Embedding) -> (Data, Data, DMatrix<f64>) {
+    assert!(
+        d >= 2,
+        "the cross test needs at least 2 dimensions, got {d}"
+    );
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let train = cross_train(&mut rng, 500);
     let rot = match e {
-        Embedding::Rotation => rotation(&mut rng, 21),
-        Embedding::Identity => DMatrix::identity(21, 21),
+        Embedding::Rotation => rotation(&mut rng, d),
+        Embedding::Identity => DMatrix::identity(d, d),
     };
     (embed(&train, &rot), embed(&cross_grid(), &rot), rot)
 }

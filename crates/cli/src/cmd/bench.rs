@@ -5,7 +5,8 @@
 //!   `--first-seed` on;
 //! - `cross_21d`: the same points embedded in 21-D by a random rotation (or, with
 //!   `--cross21-embedding identity`, unrotated), 25 epochs (`--cross21-epochs`), full metric
-//!   with meta learning; key `embedding`;
+//!   with meta learning; keys `embedding` and `dim` (`--cross21-dim`: 21 as in issue 4, 25 as
+//!   in the reference library's Matlab test `test_lwpr_nD.m`);
 //! - `sarcos7_invdyn`: robot inverse dynamics, inputs `[q, q̇, q̈]` (21-D), outputs the 7 joint
 //!   torques of the SARCOS master arm by RNEA, diagonal metric, one model per output.
 //!
@@ -16,10 +17,7 @@
 
 use crate::util;
 use anyhow::{Context, Result};
-use lwpr::datasets::{
-    cross21_config, cross21_embedded_run, cross21_run, cross_config, cross_run, Embedding,
-    RunResult,
-};
+use lwpr::datasets::{cross21_config, cross_config, cross_nd_run, cross_run, Embedding, RunResult};
 use lwpr::{Lwpr, LwprConfig, MetricInit, Norm, NormKeyword, PruneRule};
 use osrl_dynamics::{rnea, robots};
 use rand::seq::SliceRandom;
@@ -92,6 +90,10 @@ struct LwprArgs {
     /// How the 21-D cross test embeds its 2-D points.
     #[arg(long, value_enum, default_value = "rotation")]
     cross21_embedding: Embed,
+    /// Dimension of the "21-D" cross test, at least 2 (the reference library's Matlab test
+    /// uses 25).
+    #[arg(long, default_value_t = 21)]
+    cross21_dim: usize,
     /// Robot data: number of random trajectories.
     #[arg(long, default_value_t = 10)]
     traj: usize,
@@ -118,11 +120,11 @@ pub fn run(a: Args) -> Result<()> {
 }
 
 /// One seed of a cross test: config, seed, epochs.
-type RunFn = fn(&LwprConfig, u64, usize) -> Result<RunResult, lwpr::LwprError>;
+type RunFn<'a> = &'a dyn Fn(&LwprConfig, u64, usize) -> Result<RunResult, lwpr::LwprError>;
 
-/// A cross test (`run`: `datasets::cross_run`, `cross21_run` or the unrotated 21-D run) with `cfg` for `epochs` over
-/// the seeds of `a`, each repeated `a.repeat` times (smallest times kept); medians and
-/// per-seed values.
+/// A cross test (`run`: `datasets::cross_run` or `cross_nd_run` with an embedding) with `cfg`
+/// for `epochs` over the seeds of `a`, each repeated `a.repeat` times (smallest times kept);
+/// medians and per-seed values.
 fn cross(a: &LwprArgs, cfg: &LwprConfig, epochs: usize, run: RunFn) -> Result<Value> {
     let (s0, n, repeat) = (a.first_seed, a.seeds, a.repeat);
     let f = |seed| run(cfg, seed, epochs);
@@ -170,6 +172,11 @@ fn lwpr(a: LwprArgs) -> Result<()> {
         "--cross2-epochs and --cross21-epochs must be at least 1"
     );
     anyhow::ensure!(
+        (2..=1000).contains(&a.cross21_dim),
+        "--cross21-dim must be within 2–1000 (got {})",
+        a.cross21_dim
+    );
+    anyhow::ensure!(
         a.traj > 0 && (0.1..=3600.0).contains(&a.seconds) && a.epochs > 0,
         "--traj and --epochs must be at least 1 and --seconds within 0.1–3600 (got {}, {}, {})",
         a.traj,
@@ -185,7 +192,7 @@ fn lwpr(a: LwprArgs) -> Result<()> {
         out.insert(name.into(), v);
     };
     if want(Test::Cross2) {
-        let v = cross(&a, &cross_config(), a.cross2_epochs, cross_run)?;
+        let v = cross(&a, &cross_config(), a.cross2_epochs, &cross_run)?;
         say("cross_2d", v);
     }
     if want(Test::Cross21) {
@@ -197,15 +204,15 @@ fn lwpr(a: LwprArgs) -> Result<()> {
             prune_rule,
             ..cross21_config()
         };
-        let (run, name): (RunFn, _) = match a.cross21_embedding {
-            Embed::Rotation => (cross21_run, "rotation"),
-            Embed::Identity => (
-                |c, s, e| cross21_embedded_run(c, s, e, Embedding::Identity),
-                "identity",
-            ),
+        let (emb, name) = match a.cross21_embedding {
+            Embed::Rotation => (Embedding::Rotation, "rotation"),
+            Embed::Identity => (Embedding::Identity, "identity"),
         };
-        let mut v = cross(&a, &cfg, a.cross21_epochs, run)?;
+        let d = a.cross21_dim;
+        let run = |c: &LwprConfig, s, e| cross_nd_run(c, s, e, d, emb);
+        let mut v = cross(&a, &cfg, a.cross21_epochs, &run)?;
         v["embedding"] = json!(name);
+        v["dim"] = json!(d);
         say("cross_21d", v);
     }
     if want(Test::Sarcos7) {
