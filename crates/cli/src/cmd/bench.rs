@@ -90,8 +90,8 @@ struct LwprArgs {
     /// How the 21-D cross test embeds its 2-D points.
     #[arg(long, value_enum, default_value = "rotation")]
     cross21_embedding: Embed,
-    /// Dimension of the "21-D" cross test, at least 2 (the reference library's Matlab test
-    /// uses 25).
+    /// Dimension of the "21-D" cross test, 2–1000 (the reference library's Matlab test uses
+    /// 25).
     #[arg(long, default_value_t = 21)]
     cross21_dim: usize,
     /// Robot data: number of random trajectories.
