@@ -110,26 +110,29 @@ fn bench_lwpr_cross21_takes_its_seeds_and_epochs() {
     assert_eq!(c["embedding"], "rotation");
 }
 
+/// The `cross_21d` object of a one-seed, one-epoch run of the 21-D test with `flag value`.
+fn cross21_with(flag: &str, value: &str) -> serde_json::Value {
+    let args = [
+        "bench",
+        "lwpr",
+        "--only",
+        "cross21",
+        "--seeds",
+        "1",
+        "--cross21-epochs",
+        "1",
+        flag,
+        value,
+        "--json",
+    ];
+    let (ok, out, err) = osrl(&args);
+    assert!(ok, "{err}");
+    last_json(&out)["cross_21d"].clone()
+}
+
 #[test]
 fn bench_lwpr_cross21_embeds_with_or_without_the_rotation() {
-    let run = |embedding: &str| {
-        let args = [
-            "bench",
-            "lwpr",
-            "--only",
-            "cross21",
-            "--seeds",
-            "1",
-            "--cross21-epochs",
-            "1",
-            "--cross21-embedding",
-            embedding,
-            "--json",
-        ];
-        let (ok, out, err) = osrl(&args);
-        assert!(ok, "{err}");
-        last_json(&out)["cross_21d"].clone()
-    };
+    let run = |embedding| cross21_with("--cross21-embedding", embedding);
     let (rot, id) = (run("rotation"), run("identity"));
     assert_eq!(
         (&rot["embedding"], &id["embedding"]),
@@ -146,24 +149,7 @@ fn bench_lwpr_cross21_embeds_with_or_without_the_rotation() {
 /// reports it as `dim`.
 #[test]
 fn bench_lwpr_cross21_dim() {
-    let run = |dim: &str| {
-        let args = [
-            "bench",
-            "lwpr",
-            "--only",
-            "cross21",
-            "--seeds",
-            "1",
-            "--cross21-epochs",
-            "1",
-            "--cross21-dim",
-            dim,
-            "--json",
-        ];
-        let (ok, out, err) = osrl(&args);
-        assert!(ok, "{err}");
-        last_json(&out)["cross_21d"].clone()
-    };
+    let run = |dim| cross21_with("--cross21-dim", dim);
     let (d21, d25) = (run("21"), run("25"));
     assert_eq!(
         (d21["dim"].as_u64(), d25["dim"].as_u64()),
