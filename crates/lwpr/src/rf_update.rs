@@ -163,16 +163,34 @@ fn output_step<const R: usize>(
     } else {
         pls::update_regression::<R>(out, nr, omega, y, w, ws)
     };
-    if p.cfg.update_d {
-        let (sv, ps) = (&ws.s, &mut ws.ps);
-        if metric::output_terms::<R>(out, nr, w, sv, ps, r.e_cv, r.e, p.cfg.meta, acc) {
-            ws.skipped += 1;
-        }
+    let (sv, ps) = (&ws.s, &mut ws.ps);
+    if after_regression::<R>(p, out, nr, w, sv, ps, &r, acc) {
+        ws.skipped += 1;
     }
+    (r.yp, r.chk)
+}
+
+/// What follows an output's PLS step `r` (new projections `s`, scratch `ps`): the metric's
+/// cost terms into `acc` when `update_d`, (e) the growth test and (f) forgetting; true when
+/// the leverage guard skipped the cost terms ([`metric::output_terms`]).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub(crate) fn after_regression<const R: usize>(
+    p: &Params,
+    out: &mut crate::rf::Pls,
+    nr: usize,
+    w: f64,
+    s: &[f64],
+    ps: &mut [f64],
+    r: &pls::RegOut,
+    acc: &mut MetricAcc,
+) -> bool {
+    let skipped = p.cfg.update_d
+        && metric::output_terms::<R>(out, nr, w, s, ps, r.e_cv, r.e, p.cfg.meta, acc);
     out.check_grow(p);
     // Over the directions as they are now (one may have just been added).
     pls::forget(out, p.cfg.tau_lambda, p.cfg.final_lambda);
     // The slope is recomputed when a prediction needs it (`Pls::refresh_slope`).
     out.slope_stale = true;
-    (r.yp, r.chk)
+    skipped
 }

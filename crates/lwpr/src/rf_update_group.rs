@@ -15,12 +15,12 @@
 //! when a neighbour shares the core; 2.3 % fewer instructions (`crates/lwpr/README.md`,
 //! ninth round).
 
-use crate::metric::{self, MetricAcc};
+use crate::metric::MetricAcc;
 use crate::metric_2d::{step_2d, MetricState};
 use crate::params::Params;
 use crate::pls::{self, RegOut};
 use crate::rf::SubModel;
-use crate::rf_update::RfOutcome;
+use crate::rf_update::{after_regression, RfOutcome};
 use crate::rf_update_2d::{arr, regression_2d_core};
 use crate::scratch::Scratch;
 
@@ -114,7 +114,6 @@ fn update_group_2d<const L: usize>(
     let y = ws.yn[o0];
     let xr = *arr::<2>(&mut ws.xr);
     let xk = *arr::<2>(&mut ws.xk);
-    let meta = p.cfg.meta;
     let SubModel {
         rfs,
         centers,
@@ -145,24 +144,9 @@ fn update_group_2d<const L: usize>(
     let mut ps = [[0.0; 2]; L];
     for l in 0..L {
         let out = &mut rf[l].outs[0];
-        if p.cfg.update_d
-            && metric::output_terms::<2>(
-                out,
-                2,
-                w[l],
-                &sn[l],
-                &mut ps[l],
-                reg[l].e_cv,
-                reg[l].e,
-                meta,
-                &mut acc[l],
-            )
-        {
+        if after_regression::<2>(p, out, 2, w[l], &sn[l], &mut ps[l], &reg[l], &mut acc[l]) {
             ws.pls.skipped += 1;
         }
-        out.check_grow(p);
-        pls::forget(out, p.cfg.tau_lambda, p.cfg.final_lambda);
-        out.slope_stale = true;
     }
     // (d) The metric steps.
     for l in 0..L {
