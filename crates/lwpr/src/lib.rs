@@ -80,6 +80,7 @@ mod rf_update_2d;
 mod rf_update_group;
 mod scratch;
 mod simd;
+mod update_sub;
 
 pub use config::{Kernel, LwprConfig, MetricInit, Norm, NormKeyword, PruneRule};
 pub use error::{LwprError, MAX_NORMALISED};

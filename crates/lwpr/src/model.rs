@@ -1,12 +1,12 @@
 //! The model and one update (`shared/LWPR.md`, "One update").
 
-use crate::activation::Top2;
-use crate::config::{LwprConfig, PruneRule};
+use crate::config::LwprConfig;
 use crate::error::{check_scale, check_vec};
 use crate::params::Params;
-use crate::partition::{RfEvent, RfId};
+use crate::partition::RfEvent;
 use crate::rf::SubModel;
-use crate::scratch::{quad, Scratch};
+use crate::scratch::Scratch;
+use crate::update_sub::{update_sub, SubCtx};
 use crate::LwprError;
 use serde::{Deserialize, Serialize};
 
@@ -161,7 +161,13 @@ impl Lwpr {
         let ny = p.n_local_out();
         for (s, sub) in subs.iter_mut().enumerate() {
             let o0 = s * ny;
-            let r = update_sub(p, sub, s, o0, ws, events, next_id);
+            let cx = SubCtx {
+                s,
+                o0,
+                events,
+                next_id,
+            };
+            let r = update_sub(p, sub, ws, cx);
             info.max_w = info.max_w.max(r.max_w);
             info.added += r.added as usize;
             info.pruned += r.pruned as usize;
@@ -187,228 +193,4 @@ impl Lwpr {
     pub fn events(&self) -> &[RfEvent] {
         &self.events
     }
-}
-
-/// What the update of one sub-model did.
-#[derive(Clone, Copy, Debug, Default)]
-struct SubOutcome {
-    /// Largest activation of an existing RF.
-    max_w: f64,
-    /// An RF was added.
-    added: bool,
-    /// An RF was pruned.
-    pruned: bool,
-    /// Outputs of RFs whose metric terms the leverage guard skipped.
-    metric_skipped: usize,
-    /// RFs removed because their state stopped being finite.
-    removed: usize,
-}
-
-/// Updates sub-model `s` (outputs `o0..o0+ny` of `ws.yn`).
-///
-/// The same code is compiled twice, once for the baseline target and once with AVX2 enabled
-/// (chosen at run time); vector instructions do the same IEEE operations in the same order,
-/// so both give bit-identical results.
-fn update_sub(
-    p: &Params,
-    sub: &mut SubModel,
-    s: usize,
-    o0: usize,
-    ws: &mut Scratch,
-    events: &mut Vec<RfEvent>,
-    next_id: &mut u64,
-) -> SubOutcome {
-    #[cfg(target_arch = "x86_64")]
-    if crate::simd::has_avx2() {
-        // SAFETY: the CPU supports AVX2 (checked at run time).
-        return unsafe { update_sub_avx2(p, sub, s, o0, ws, events, next_id) };
-    }
-    update_sub_dims::<false>(p, sub, s, o0, ws, events, next_id)
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-unsafe fn update_sub_avx2(
-    p: &Params,
-    sub: &mut SubModel,
-    s: usize,
-    o0: usize,
-    ws: &mut Scratch,
-    events: &mut Vec<RfEvent>,
-    next_id: &mut u64,
-) -> SubOutcome {
-    update_sub_dims::<true>(p, sub, s, o0, ws, events, next_id)
-}
-
-/// Small input spaces get their own copy of the update with the dimensions as constants, so
-/// that the loops over them unroll (the arithmetic is the same).
-#[inline(always)]
-fn update_sub_dims<const AVX: bool>(
-    p: &Params,
-    sub: &mut SubModel,
-    s: usize,
-    o0: usize,
-    ws: &mut Scratch,
-    events: &mut Vec<RfEvent>,
-    next_id: &mut u64,
-) -> SubOutcome {
-    match (p.nk(), p.nr()) {
-        (1, 1) => update_sub_impl::<1, 1, AVX>(p, sub, s, o0, ws, events, next_id),
-        (2, 2) => update_sub_impl::<2, 2, AVX>(p, sub, s, o0, ws, events, next_id),
-        // The shapes of the learned controllers' models (crate `osrl-learn`): the forward model
-        // (kernel on `(q, q̇)`, regression on `(q, q̇, u)`) and the gravity model (kernel on `q`,
-        // regression on `(q, q̇, q̈)`) of the 7-DOF and the 3-DOF arms.
-        (14, 21) => update_sub_impl::<14, 21, AVX>(p, sub, s, o0, ws, events, next_id),
-        (7, 21) => update_sub_impl::<7, 21, AVX>(p, sub, s, o0, ws, events, next_id),
-        (6, 9) => update_sub_impl::<6, 9, AVX>(p, sub, s, o0, ws, events, next_id),
-        (3, 9) => update_sub_impl::<3, 9, AVX>(p, sub, s, o0, ws, events, next_id),
-        // 21 inputs: the robot inverse-dynamics benchmark `[q, q̇, q̈]` and the 21-D cross.
-        (21, 21) => update_sub_impl::<21, 21, AVX>(p, sub, s, o0, ws, events, next_id),
-        _ => update_sub_impl::<0, 0, AVX>(p, sub, s, o0, ws, events, next_id),
-    }
-}
-
-/// The update of one sub-model; `NK`, `NR` > 0 fix the kernel and regression dimensions at
-/// compile time (0: taken from `p`).
-#[inline(always)]
-fn update_sub_impl<const NK: usize, const NR: usize, const AVX: bool>(
-    p: &Params,
-    sub: &mut SubModel,
-    s: usize,
-    o0: usize,
-    ws: &mut Scratch,
-    events: &mut Vec<RfEvent>,
-    next_id: &mut u64,
-) -> SubOutcome {
-    let nk = if NK > 0 { NK } else { p.nk() };
-    let (ml, ny) = (p.mlen(), p.n_local_out());
-    let diag = p.cfg.diag_only;
-    let qb = ws.qb_update;
-    let mut top = Top2::new();
-    ws.active.clear();
-    if NK == 2 && !diag && !crate::rf_update::general_only() {
-        // Four RFs at a time (the 2-D cross test's shape); the same `q`s.
-        let active = &mut ws.active;
-        crate::activation::for_each_q::<AVX>(&sub.centers, &sub.ms, &ws.xk, |i, q| {
-            top.visit(p, qb, i, q, active)
-        });
-    } else {
-        let kern = if diag { &sub.ds } else { &sub.ms };
-        // Centres and metrics by chunks (no index arithmetic or bounds checks per RF).
-        let rf_chunks = sub.centers.chunks_exact(nk).zip(kern.chunks_exact(ml));
-        for (i, (c, md)) in rf_chunks.enumerate() {
-            // An RF at q ≥ max(qb, q2) is neither updated nor among the two most active.
-            let q = quad(diag, c, md, &ws.xk[..nk], &mut ws.met.dx, qb.max(top.q2));
-            top.visit(p, qb, i, q, &mut ws.active);
-        }
-    }
-    let Top2 {
-        q1,
-        i1,
-        w1,
-        q2,
-        i2,
-        w2,
-    } = top;
-    ws.yacc[..ny].iter_mut().for_each(|v| *v = 0.0);
-    let mut sum_w = 0.0;
-    let mut out = SubOutcome::default();
-    ws.diverged.clear();
-    ws.pls.skipped = 0;
-    let groups = crate::rf_update_group::applies::<NK, NR>(p) && !crate::rf_update::general_only();
-    let mut a = 0;
-    while a < ws.active.len() {
-        if groups {
-            // The 2-D cross test's shape: several RFs at a time (the same results).
-            a = crate::rf_update_group::update_groups(p, sub, a, o0, ws, &mut sum_w);
-            if a == ws.active.len() {
-                break;
-            }
-        }
-        let (i, w, dwdq, ddwdqdq) = ws.active[a];
-        let r = crate::rf_update::update_rf::<NK, NR, AVX>(p, sub, i, w, dwdq, ddwdqdq, o0, ws);
-        if r.blended {
-            sum_w += w;
-        }
-        if !r.finite {
-            ws.diverged.push(sub.rfs[i].id);
-        }
-        a += 1;
-    }
-    for o in 0..ny {
-        ws.last_yp[o0 + o] = if sum_w > 0.0 {
-            ws.yacc[o] / sum_w
-        } else {
-            f64::NAN
-        };
-    }
-    out.metric_skipped = ws.pls.skipped;
-    // Add or prune (step 5).
-    let w_max = if i1 < usize::MAX {
-        w1.unwrap_or_else(|| p.kernel(q1).0)
-    } else {
-        0.0
-    };
-    out.max_w = w_max;
-    if !ws.diverged.is_empty() {
-        // Numerical guard: RFs whose state diverged are removed, each looked up by its id
-        // (`remove` moves the last RF into the gap); the indices of the two nearest RFs are
-        // stale now, so this sub-model neither adds nor prunes in this update.
-        for &id in &ws.diverged {
-            let i = sub
-                .rfs
-                .iter()
-                .position(|rf| rf.id == id)
-                .expect("a diverged RF is in its sub-model");
-            events.push(RfEvent::Pruned {
-                sub: s,
-                id: RfId(id),
-            });
-            sub.remove(p, i);
-        }
-        out.removed = ws.diverged.len();
-        return out;
-    }
-    if w_max <= p.cfg.w_gen {
-        let template =
-            (i1 < usize::MAX && w_max > 0.1 * p.cfg.w_gen && sub.rfs[i1].trustworthy).then_some(i1);
-        let id = *next_id;
-        *next_id += 1;
-        let y = &ws.yn[o0..o0 + ny];
-        sub.add(p, id, &ws.xk, y, template);
-        events.push(RfEvent::Added {
-            sub: s,
-            id: RfId(id),
-            copied_from: template.map(|t| RfId(sub.rfs[t].id)),
-        });
-        if ws.active.capacity() < sub.rfs.len() {
-            ws.active.reserve(sub.rfs.len());
-        }
-        if ws.act_out.capacity() < sub.rfs.len() {
-            ws.act_out.reserve(sub.rfs.len());
-        }
-        if ws.diverged.capacity() < sub.rfs.len() {
-            ws.diverged.reserve(sub.rfs.len());
-        }
-        out.added = true;
-        return out;
-    }
-    if i2 < usize::MAX && w2.unwrap_or_else(|| p.kernel(q2).0) > p.cfg.w_prune {
-        // The C library v1.2 removes the wider of the two (smaller trace of D; on a tie the
-        // second); LWPR.md and the library's Matlab code the narrower (on a tie the first).
-        let (t1, t2) = (sub.trace_d(p, i1), sub.trace_d(p, i2));
-        let k = match p.cfg.prune_rule {
-            PruneRule::Wider if t1 < t2 => i1,
-            PruneRule::Wider => i2,
-            PruneRule::Narrower if t2 > t1 => i2,
-            PruneRule::Narrower => i1,
-        };
-        events.push(RfEvent::Pruned {
-            sub: s,
-            id: RfId(sub.rfs[k].id),
-        });
-        sub.remove(p, k);
-        out.pruned = true;
-    }
-    out
 }
