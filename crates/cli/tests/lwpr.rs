@@ -256,6 +256,10 @@ fn bad_configs_and_save_paths_fail_before_training() {
             "norm_in = \"mean\"\n",
             vec!["c.toml:1:11", "`norm_in = \"mean\"`", "\"std\""],
         ),
+        (
+            "norm_out = 1e-300\n",
+            vec!["c.toml", "norm_out = 1e-300 is outside [1e-100, 1e100]"],
+        ),
         ("w_gem = 0.2\n", vec!["c.toml:1:1", "w_gem"]),
     ];
     for (text, want) in cases {
@@ -288,10 +292,10 @@ fn bad_configs_and_save_paths_fail_before_training() {
     // Too many updates to count is an error, not an abort.
     let (ok, _, err) = fit(&["--epochs", "18446744073709551615"]);
     assert!(!ok && err.contains("too many updates"), "{err}");
-    // Outputs scaled by 1e300 by their normalisation (their squares and higher powers would
-    // overflow in the update, and the model diverge): an error naming the file and line, the
-    // value and the divisor, before anything is learnt from that row.
-    std::fs::write(&cfg, "norm_out = 1e-300\n").unwrap();
+    // Outputs scaled by 1e100 by their normalisation (the smallest it may be; their squares
+    // and higher powers would overflow in the update, and the model diverge): an error naming
+    // the file and line, the value and the divisor, before anything is learnt from that row.
+    std::fs::write(&cfg, "norm_out = 1e-100\n").unwrap();
     let (ok, out, err) = fit2(&data, &data, &["--config", s(&cfg), "--json"]);
     let line = err
         .split("data.csv:")
@@ -300,7 +304,7 @@ fn bad_configs_and_save_paths_fail_before_training() {
     assert!(
         !ok && out.is_empty()
             && line.is_some_and(|l| l >= 2)
-            && err.contains("norm_out[0] = 1e-300"),
+            && err.contains("norm_out[0] = 1e-100"),
         "{out} {err}"
     );
     // A constant test target (0.1: its computed variance is a rounding residue, not 0): nMSE

@@ -151,9 +151,11 @@ pub struct LwprConfig {
     pub add_threshold: f64,
     /// Kernel. Default Gaussian.
     pub kernel: Kernel,
-    /// Inputs are divided by these (input units). Default 1.
+    /// Inputs are divided by these (input units), each within [`crate::params::NORM_RANGE`]
+    /// (1e-100 to 1e100). Default 1.
     pub norm_in: Norm,
-    /// Outputs are divided by these (output units). Default 1.
+    /// Outputs are divided by these (output units), each within
+    /// [`crate::params::NORM_RANGE`] (1e-100 to 1e100). Default 1.
     pub norm_out: Norm,
     /// Which RF of an overlapping pair is pruned. Default `"wider"` (the reference C library;
     /// `shared/LWPR.md` says narrower, see [`PruneRule`]).

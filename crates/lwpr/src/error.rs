@@ -102,7 +102,7 @@ pub(crate) fn check_vec(what: &'static str, v: &[f64], expected: usize) -> Resul
 pub const MAX_NORMALISED: f64 = 1e40;
 
 /// `v` as `Display` prints it when that is short, else in scientific notation.
-fn num(v: f64) -> String {
+pub(crate) fn num(v: f64) -> String {
     if v == 0.0 || (1e-4..1e6).contains(&v.abs()) {
         format!("{v}")
     } else {

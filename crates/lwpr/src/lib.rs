@@ -87,6 +87,7 @@ pub use error::{LwprError, MAX_NORMALISED};
 pub use io::{write_atomic, FORMAT_VERSION, MAGIC};
 pub use model::{Lwpr, UpdateInfo, Warnings};
 pub use params::Params;
+pub use params::NORM_RANGE;
 pub use partition::{Activation, LocalModel, RfEvent, RfId, RfView};
 pub use predict::Support;
 

@@ -1,6 +1,7 @@
 //! Validated, resolved parameters: what the algorithm reads on every update.
 
 use crate::config::{Kernel, LwprConfig, MetricInit, Norm};
+use crate::error::num;
 use crate::LwprError;
 use serde::{Deserialize, Serialize};
 
@@ -55,17 +56,27 @@ fn dims(name: &str, d: &Option<Vec<usize>>, n_in: usize) -> Result<Vec<usize>, L
 }
 
 fn norm(name: &str, n: &Norm, len: usize) -> Result<Vec<f64>, LwprError> {
-    let v = match n {
-        Norm::Scalar(s) => vec![*s; len],
-        Norm::List(l) if l.len() == len => l.clone(),
-        Norm::List(l) => return Err(bad(format!("{name} has {} entries, need {len}", l.len()))),
-        Norm::Keyword(_) => return Err(bad(format!("{name} = \"std\" was not resolved"))),
-    };
-    if v.iter().any(|&a| !(a.is_finite() && a > 0.0)) {
-        return Err(bad(format!("{name} entries must be finite and > 0")));
+    let (lo, hi) = NORM_RANGE;
+    match n {
+        Norm::Scalar(s) => {
+            range(name, *s, lo, hi, false, false)?;
+            Ok(vec![*s; len])
+        }
+        Norm::List(l) if l.len() == len => {
+            for (i, &a) in l.iter().enumerate() {
+                range(&format!("{name}[{i}]"), a, lo, hi, false, false)?;
+            }
+            Ok(l.clone())
+        }
+        Norm::List(l) => Err(bad(format!("{name} has {} entries, need {len}", l.len()))),
+        Norm::Keyword(_) => Err(bad(format!("{name} = \"std\" was not resolved"))),
     }
-    Ok(v)
 }
+
+/// The range of a `norm_in` or `norm_out` entry. Beyond it a model's quantities in user
+/// units — its metrics `D / (norm_in_i·norm_in_j)`, its Jacobians `slope·norm_out/norm_in`,
+/// its centres and predictions — could overflow, or lose their precision to subnormals.
+pub const NORM_RANGE: (f64, f64) = (1e-100, 1e100);
 
 /// Checks `lo < v` (`lo_open`) or `lo ≤ v`, and `v ≤ hi` or `v < hi` (`hi_open`); `hi = ∞`
 /// means only finite.
@@ -86,11 +97,12 @@ fn range(
         if lo_open { "(" } else { "[" },
         if hi_open { ")" } else { "]" },
     );
+    let (v, lo) = (num(v), num(lo));
     Err(bad(if hi == f64::INFINITY {
         let op = if lo_open { ">" } else { "≥" };
         format!("{name} = {v}: must be finite and {op} {lo}")
     } else {
-        format!("{name} = {v} is outside {l}{lo}, {hi}{r}")
+        format!("{name} = {v} is outside {l}{lo}, {}{r}", num(hi))
     }))
 }
 

@@ -1,7 +1,7 @@
 //! The numerical guards of the update: inputs too large once normalised are refused, the
 //! leverage guard of the metric step, and the removal of receptive fields whose state diverged.
 
-use lwpr::{Lwpr, LwprConfig, LwprError, MetricInit, Norm, RfEvent, MAX_NORMALISED};
+use lwpr::{Lwpr, LwprConfig, LwprError, MetricInit, Norm, RfEvent, MAX_NORMALISED, NORM_RANGE};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -299,4 +299,91 @@ fn random_configs_stay_finite_and_loadable() {
     }
     // Both guards were exercised.
     assert!(skipped > 0 && removed > 0, "{skipped} {removed}");
+}
+
+/// A normalisation outside [`NORM_RANGE`] is refused with an error naming the entry; at the
+/// range's ends, with powers of two (so that scaling is exact), a model of scaled data is the
+/// unscaled one to the bit, and its metrics, centres, local models, predictions and Jacobians
+/// in user units are finite: the unscaled ones times the scales, exactly.
+#[test]
+fn normalisations_at_the_ends_of_their_range() {
+    let (lo, hi) = NORM_RANGE;
+    for (norm_in, norm_out, want) in [
+        (
+            Norm::Scalar(lo / 10.0),
+            Norm::Scalar(1.0),
+            "norm_in = 1e-101 is outside",
+        ),
+        (
+            Norm::List(vec![1.0, hi * 10.0]),
+            Norm::Scalar(1.0),
+            "norm_in[1] = 1e101",
+        ),
+        (
+            Norm::Scalar(1.0),
+            Norm::List(vec![f64::NAN]),
+            "norm_out[0] = NaN",
+        ),
+        (
+            Norm::Scalar(1.0),
+            Norm::Scalar(0.0),
+            "norm_out = 0 is outside [1e-100, 1e100]",
+        ),
+    ] {
+        let cfg = LwprConfig {
+            norm_in,
+            norm_out,
+            ..lwpr::datasets::cross_config()
+        };
+        let e = Lwpr::new(2, 1, &cfg).unwrap_err().to_string();
+        assert!(e.contains(want), "{e}");
+    }
+    let data = lwpr::datasets::cross_train(&mut ChaCha8Rng::seed_from_u64(5), 300);
+    // 2^±332 lie within the range (1.1e-100 and 8.7e99).
+    let (tiny, huge) = (2f64.powi(-332), 2f64.powi(332));
+    assert!(lo <= tiny && huge <= hi);
+    let train = |sx: f64, sy: f64| {
+        let cfg = LwprConfig {
+            norm_in: Norm::Scalar(sx),
+            norm_out: Norm::Scalar(sy),
+            ..lwpr::datasets::cross_config()
+        };
+        let mut m = Lwpr::new(2, 1, &cfg).unwrap();
+        for _ in 0..3 {
+            for (x, y) in data.x.iter().zip(&data.y) {
+                m.update(&[x[0] * sx, x[1] * sx], &[y * sy]).unwrap();
+            }
+        }
+        m
+    };
+    let mut base = train(1.0, 1.0);
+    for (sx, sy) in [(tiny, huge), (huge, tiny)] {
+        let mut m = train(sx, sy);
+        assert!(m.n_rfs_total() > 5);
+        for (a, b) in m.rfs(0).unwrap().zip(base.rfs(0).unwrap()) {
+            let d = a.metric();
+            assert_eq!(d, b.metric() / (sx * sx), "metric");
+            // Finite, and not flushed to 0 on the diagonal.
+            assert!(d.iter().all(|v| v.is_finite()) && d.diagonal().iter().all(|v| *v > 0.0));
+            assert_eq!(
+                a.center(),
+                b.center().iter().map(|c| c * sx).collect::<Vec<_>>()
+            );
+            let (la, lb) = (a.local_model(0).unwrap(), b.local_model(0).unwrap());
+            assert_eq!(la.offset, lb.offset * sy);
+            let slope: Vec<f64> = lb.slope.iter().map(|s| s * sy / sx).collect();
+            assert_eq!(la.slope, slope);
+            assert!(la.slope.iter().all(|v| v.is_finite()));
+        }
+        let (mut ya, mut yb, mut ja, mut jb) = ([0.0], [0.0], [0.0; 2], [0.0; 2]);
+        for k in 0..=10 {
+            let x = [-0.5 + 0.1 * k as f64, 0.3];
+            base.predict_jacobian(&x, &mut yb, &mut jb).unwrap();
+            m.predict_jacobian(&[x[0] * sx, x[1] * sx], &mut ya, &mut ja)
+                .unwrap();
+            assert_eq!(ya[0], yb[0] * sy);
+            assert_eq!(ja, [jb[0] * sy / sx, jb[1] * sy / sx]);
+            assert!(ja.iter().all(|v| v.is_finite()));
+        }
+    }
 }
