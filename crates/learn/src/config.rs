@@ -188,7 +188,7 @@ pub struct LearnerConfig {
     /// scales of torques and accelerations inside the models. Default 1000.
     pub warmup_samples: usize,
     /// Scale of joint velocities in the kernels (rad/s): kernel widths in `q̇` are this many
-    /// times those in `q`. Default 10.
+    /// times those in `q`, within [`lwpr::NORM_RANGE`]. Default 10.
     pub velocity_scale: f64,
 }
 
@@ -368,9 +368,11 @@ impl LearnerConfig {
         if self.warmup_samples < 10 {
             return bad("warmup_samples must be ≥ 10".into());
         }
-        if !(self.velocity_scale > 0.0 && self.velocity_scale.is_finite()) {
+        // It normalises the models' velocity inputs: LWPR's range for a normalisation.
+        let (lo, hi) = lwpr::NORM_RANGE;
+        if !(lo..=hi).contains(&self.velocity_scale) {
             return bad(format!(
-                "velocity_scale {} must be > 0",
+                "velocity_scale {:e} must be within [{lo:e}, {hi:e}] (rad/s)",
                 self.velocity_scale
             ));
         }

@@ -167,6 +167,19 @@ fn commands_respect_the_torque_limits_and_bad_limits_are_refused() {
             "{bad:?}: {err:?}"
         );
     }
+    // A velocity scale outside LWPR's normalisation range is refused when the learner is made,
+    // not after the warm-up when its models are.
+    for bad in [0.0, 1e-101, 1e101, f64::NAN] {
+        let c = osrl_learn::LearnerConfig {
+            velocity_scale: bad,
+            ..cfg.clone()
+        };
+        let err = osrl_learn::Learner::new(3, 2, 0.002, c).err();
+        assert!(
+            matches!(&err, Some(LearnError::InvalidConfig(m)) if m.contains("velocity_scale")),
+            "{bad}: {err:?}"
+        );
+    }
     // Limits far below gravity: every command (fallback u0, then the learned blend with
     // exploration) stays inside them, and the clipped commands are counted.
     // A learner without limits gets them set (a bad set changes nothing).

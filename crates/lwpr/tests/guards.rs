@@ -304,7 +304,8 @@ fn random_configs_stay_finite_and_loadable() {
 /// A normalisation outside [`NORM_RANGE`] is refused with an error naming the entry; at the
 /// range's ends, with powers of two (so that scaling is exact), a model of scaled data is the
 /// unscaled one to the bit, and its metrics, centres, local models, predictions and Jacobians
-/// in user units are finite: the unscaled ones times the scales, exactly.
+/// in user units are finite: the unscaled ones times the scales, exactly. (The input and
+/// output scales are independent, so that one used for the other would show.)
 #[test]
 fn normalisations_at_the_ends_of_their_range() {
     let (lo, hi) = NORM_RANGE;
@@ -339,9 +340,10 @@ fn normalisations_at_the_ends_of_their_range() {
         assert!(e.contains(want), "{e}");
     }
     let data = lwpr::datasets::cross_train(&mut ChaCha8Rng::seed_from_u64(5), 300);
-    // 2^±332 lie within the range (1.1e-100 and 8.7e99).
+    // 2^±332 lie within the range (1.1e-100 and 8.7e99), as do 2^200 and 2^-300.
     let (tiny, huge) = (2f64.powi(-332), 2f64.powi(332));
-    assert!(lo <= tiny && huge <= hi);
+    let (big, small) = (2f64.powi(200), 2f64.powi(-300));
+    assert!(lo <= tiny && huge <= hi && lo <= small && big <= hi);
     let train = |sx: f64, sy: f64| {
         let cfg = LwprConfig {
             norm_in: Norm::Scalar(sx),
@@ -357,10 +359,12 @@ fn normalisations_at_the_ends_of_their_range() {
         m
     };
     let mut base = train(1.0, 1.0);
-    for (sx, sy) in [(tiny, huge), (huge, tiny)] {
+    for (sx, sy) in [(tiny, big), (huge, small), (tiny, tiny), (huge, huge)] {
         let mut m = train(sx, sy);
         assert!(m.n_rfs_total() > 5);
+        assert_eq!(m.n_rfs(), base.n_rfs());
         for (a, b) in m.rfs(0).unwrap().zip(base.rfs(0).unwrap()) {
+            assert_eq!(a.id(), b.id());
             let d = a.metric();
             assert_eq!(d, b.metric() / (sx * sx), "metric");
             // Finite, and not flushed to 0 on the diagonal.
@@ -371,6 +375,7 @@ fn normalisations_at_the_ends_of_their_range() {
             );
             let (la, lb) = (a.local_model(0).unwrap(), b.local_model(0).unwrap());
             assert_eq!(la.offset, lb.offset * sy);
+            assert_eq!(la.mean, lb.mean.iter().map(|c| c * sx).collect::<Vec<_>>());
             let slope: Vec<f64> = lb.slope.iter().map(|s| s * sy / sx).collect();
             assert_eq!(la.slope, slope);
             assert!(la.slope.iter().all(|v| v.is_finite()));
