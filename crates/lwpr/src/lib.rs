@@ -86,8 +86,7 @@ pub use config::{Kernel, LwprConfig, MetricInit, Norm, NormKeyword, PruneRule};
 pub use error::{LwprError, MAX_NORMALISED};
 pub use io::{write_atomic, FORMAT_VERSION, MAGIC};
 pub use model::{Lwpr, UpdateInfo, Warnings};
-pub use params::Params;
-pub use params::NORM_RANGE;
+pub use params::{Params, NORM_RANGE};
 pub use partition::{Activation, LocalModel, RfEvent, RfId, RfView};
 pub use predict::Support;
 

@@ -73,9 +73,10 @@ fn norm(name: &str, n: &Norm, len: usize) -> Result<Vec<f64>, LwprError> {
     }
 }
 
-/// The range of a `norm_in` or `norm_out` entry, both ends included. Beyond it a model's quantities in user
-/// units — its metrics `D / (norm_in_i·norm_in_j)`, its Jacobians `slope·norm_out/norm_in`,
-/// its centres and predictions — could overflow, or lose their precision to subnormals.
+/// The range of a `norm_in` or `norm_out` entry, both ends included. Beyond it a model's
+/// quantities in user units — its metrics `D / (norm_in_i·norm_in_j)`, its Jacobians
+/// `slope·norm_out/norm_in`, its centres and predictions — could overflow, or lose their
+/// precision to subnormals.
 pub const NORM_RANGE: (f64, f64) = (1e-100, 1e100);
 
 /// Checks `lo < v` (`lo_open`) or `lo ≤ v`, and `v ≤ hi` or `v < hi` (`hi_open`); `hi = ∞`
