@@ -110,6 +110,28 @@ impl Top2 {
         }
     }
 
+    /// The nearest RF's activation, 0 when there is none (taken from the pass when it
+    /// computed it, else from the kernel).
+    #[inline(always)]
+    pub fn w_max(&self, p: &Params) -> f64 {
+        Self::w(p, self.i1, self.q1, self.w1)
+    }
+
+    /// The second-nearest RF's activation, 0 when there is none.
+    #[inline(always)]
+    pub fn w_sec(&self, p: &Params) -> f64 {
+        Self::w(p, self.i2, self.q2, self.w2)
+    }
+
+    #[inline(always)]
+    fn w(p: &Params, i: usize, q: f64, w: Option<f64>) -> f64 {
+        if i < usize::MAX {
+            w.unwrap_or_else(|| p.kernel(q).0)
+        } else {
+            0.0
+        }
+    }
+
     /// Visits RF `i` at distance `q`: queues it for the update if its activation exceeds
     /// `W_UPDATE` (`q < qb` first, so that far RFs cost no exponential), and keeps the two
     /// nearest.

@@ -112,11 +112,7 @@ fn update_sub_impl<const NK: usize, const NR: usize, const AVX: bool>(
             f64::NAN
         };
     }
-    let w_max = if top.i1 < usize::MAX {
-        top.w1.unwrap_or_else(|| p.kernel(top.q1).0)
-    } else {
-        0.0
-    };
+    let w_max = top.w_max(p);
     let mut out = SubOutcome {
         max_w: w_max,
         metric_skipped: ws.pls.skipped,
@@ -257,7 +253,7 @@ fn add(p: &Params, sub: &mut SubModel, ws: &mut Scratch, cx: SubCtx<'_>, top: &T
 #[inline(always)]
 fn prune(p: &Params, sub: &mut SubModel, cx: SubCtx<'_>, top: &Top2) -> bool {
     let (i1, i2) = (top.i1, top.i2);
-    let both = i2 < usize::MAX && top.w2.unwrap_or_else(|| p.kernel(top.q2).0) > p.cfg.w_prune;
+    let both = i2 < usize::MAX && top.w_sec(p) > p.cfg.w_prune;
     if !both {
         return false;
     }
