@@ -307,6 +307,24 @@ fn bad_configs_and_save_paths_fail_before_training() {
             && err.contains("norm_out[0] = 1e-100"),
         "{out} {err}"
     );
+    // norm_in = "std" on an input whose standard deviation is above the normalisation range
+    // (values ±1e101): an error naming the config, the data, the parameter and the input.
+    let wide = d.join("wide.csv");
+    let rows: String = (0..50)
+        .map(|i| format!("{}e101,0.2,{}\n", 2 * (i % 2) - 1, i as f64 / 50.0))
+        .collect();
+    std::fs::write(&wide, format!("x1,x2,y\n{rows}")).unwrap();
+    std::fs::write(&cfg, "norm_in = \"std\"\n").unwrap();
+    let (ok, out, err) = fit2(&wide, &data, &["--config", s(&cfg)]);
+    assert!(!ok && out.is_empty(), "{out} {err}");
+    for w in [
+        "c.toml with",
+        "wide.csv",
+        "norm_in = \"std\": input 0's standard deviation 1",
+        "e101 is above 1e100",
+    ] {
+        assert!(err.contains(w), "'{w}' not in {err}");
+    }
     // A constant test target (0.1: its computed variance is a rounding residue, not 0): nMSE
     // undefined, said on stderr, null in the JSON.
     let flat = d.join("flat.csv");

@@ -4,6 +4,7 @@
 //! maps onto [`LwprConfig`] directly; unknown keys are rejected. [`LwprConfig::validate`] runs
 //! once, in [`crate::Lwpr::new`], and resolves the config into [`crate::params::Params`].
 
+use crate::LwprError;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 /// Serde for enums that are untagged in human-readable formats (TOML, JSON) and externally
@@ -204,15 +205,55 @@ impl Default for LwprConfig {
 
 impl LwprConfig {
     /// Replaces `"std"` normalisations by the given per-dimension standard deviations
-    /// (values ≤ 1e-12 become 1, so constant columns are left unscaled).
-    pub fn resolve_std(&mut self, std_in: &[f64], std_out: &[f64]) {
-        let fix = |s: &[f64]| s.iter().map(|&v| if v > 1e-12 { v } else { 1.0 }).collect();
-        if self.norm_in == Norm::Keyword(NormKeyword::Std) {
-            self.norm_in = Norm::List(fix(std_in));
+    /// (values ≤ 1e-12, and NaN, become 1, so constant columns are left unscaled).
+    ///
+    /// Fails with [`crate::LwprError::Config`], leaving `self` unchanged, when a standard
+    /// deviation it would use is above [`crate::NORM_RANGE`] or infinite; the message names
+    /// the parameter, the column and the value.
+    ///
+    /// ```
+    /// use lwpr::{LwprConfig, Norm, NormKeyword};
+    /// let mut cfg = LwprConfig {
+    ///     norm_in: Norm::Keyword(NormKeyword::Std),
+    ///     ..Default::default()
+    /// };
+    /// cfg.resolve_std(&[2.0, 0.0], &[5.0]).unwrap();
+    /// assert_eq!(cfg.norm_in, Norm::List(vec![2.0, 1.0]));
+    /// assert_eq!(cfg.norm_out, Norm::Scalar(1.0)); // not "std": left as it was
+    /// let err = LwprConfig { norm_out: Norm::Keyword(NormKeyword::Std), ..Default::default() }
+    ///     .resolve_std(&[1.0], &[1e101])
+    ///     .unwrap_err();
+    /// assert!(err.to_string().contains("norm_out = \"std\""));
+    /// ```
+    pub fn resolve_std(&mut self, std_in: &[f64], std_out: &[f64]) -> Result<(), LwprError> {
+        let resolve = |name: &str, what: &str, n: &Norm, s: &[f64]| {
+            if *n != Norm::Keyword(NormKeyword::Std) {
+                return Ok(None);
+            }
+            let mut l = Vec::with_capacity(s.len());
+            for (k, &v) in s.iter().enumerate() {
+                if v > crate::NORM_RANGE.1 {
+                    return Err(LwprError::Config(format!(
+                        "{name} = \"std\": {what} {k}'s standard deviation {} is above {}; \
+                         give {name} explicitly or rescale the data",
+                        crate::error::num(v),
+                        crate::error::num(crate::NORM_RANGE.1)
+                    )));
+                }
+                l.push(if v > 1e-12 { v } else { 1.0 });
+            }
+            Ok::<_, LwprError>(Some(Norm::List(l)))
+        };
+        // Both first, so that an error leaves the config as it was.
+        let norm_in = resolve("norm_in", "input", &self.norm_in, std_in)?;
+        let norm_out = resolve("norm_out", "output", &self.norm_out, std_out)?;
+        if let Some(n) = norm_in {
+            self.norm_in = n;
         }
-        if self.norm_out == Norm::Keyword(NormKeyword::Std) {
-            self.norm_out = Norm::List(fix(std_out));
+        if let Some(n) = norm_out {
+            self.norm_out = n;
         }
+        Ok(())
     }
 
     /// Checks every value against the model's dimensions and resolves the config.

@@ -22,7 +22,9 @@
 //!   its owner ([`Lwpr::remove_rf`], e.g. fields a learner never uses);
 //! - **no silent zero**: prediction without any active RF is [`LwprError::NoActiveRf`];
 //! - **numerical guards** in the update, counted in [`UpdateInfo`] and [`Lwpr::warnings`]:
-//!   samples beyond ±[`MAX_NORMALISED`] once normalised are refused ([`LwprError::Scale`]);
+//!   normalisations must lie in [`NORM_RANGE`] (a config error otherwise, also for `"std"`
+//!   resolved by [`LwprConfig::resolve_std`]); samples beyond ±[`MAX_NORMALISED`] once
+//!   normalised are refused ([`LwprError::Scale`]);
 //!   the metric terms of a sample whose leverage is not below 1 are skipped (the reference
 //!   step divides by `1 − h` there); an RF whose prediction, regression or metric stops being
 //!   finite is removed and announced as [`RfEvent::Pruned`]. Under fast forgetting with

@@ -306,6 +306,57 @@ fn random_configs_stay_finite_and_loadable() {
 /// unscaled one to the bit, and its metrics, centres, local models, predictions and Jacobians
 /// in user units are finite: the unscaled ones times the scales, exactly. (The input and
 /// output scales are independent, so that one used for the other would show.)
+/// `"std"` resolved to the data's standard deviations: tiny ones (constant columns) and NaN
+/// become 1; one above the range, or infinite, is refused, naming the parameter, the
+/// dimension and the value, and the config is left as it was.
+#[test]
+fn std_normalisation_is_resolved_within_the_range() {
+    use lwpr::NormKeyword::Std;
+    let std = || Norm::Keyword(Std);
+    let mut cfg = LwprConfig {
+        norm_in: std(),
+        norm_out: std(),
+        ..lwpr::datasets::cross_config()
+    };
+    cfg.resolve_std(&[1e-13, 1e100], &[f64::NAN]).unwrap();
+    assert_eq!(cfg.norm_in, Norm::List(vec![1.0, 1e100]));
+    assert_eq!(cfg.norm_out, Norm::List(vec![1.0]));
+    Lwpr::new(2, 1, &cfg).unwrap();
+    for (s_in, s_out, want) in [
+        (
+            [1.0, 1e101],
+            1.0,
+            "norm_in = \"std\": input 1's standard deviation 1e101 is above 1e100",
+        ),
+        (
+            [1.0, 1.0],
+            f64::INFINITY,
+            "norm_out = \"std\": output 0's standard deviation inf is above 1e100",
+        ),
+    ] {
+        let mut cfg = LwprConfig {
+            norm_in: std(),
+            norm_out: std(),
+            ..lwpr::datasets::cross_config()
+        };
+        let e = cfg.resolve_std(&s_in, &[s_out]).unwrap_err();
+        assert!(matches!(e, LwprError::Config(_)));
+        assert!(e.to_string().contains(want), "{e}");
+        // Neither normalisation resolved.
+        assert_eq!((cfg.norm_in, cfg.norm_out), (std(), std()));
+    }
+    // Only "std" is resolved: a given normalisation is kept, even with a huge deviation.
+    let mut cfg = LwprConfig {
+        norm_in: Norm::Scalar(2.0),
+        ..lwpr::datasets::cross_config()
+    };
+    cfg.resolve_std(&[1e300, 1e300], &[1e300]).unwrap();
+    assert_eq!(
+        (cfg.norm_in, cfg.norm_out),
+        (Norm::Scalar(2.0), Norm::Scalar(1.0))
+    );
+}
+
 #[test]
 fn normalisations_at_the_ends_of_their_range() {
     let (lo, hi) = NORM_RANGE;

@@ -312,7 +312,7 @@ fn sarcos7(a: &LwprArgs) -> Result<Value> {
         norm_out: Norm::Keyword(NormKeyword::Std),
         ..Default::default()
     };
-    cfg.resolve_std(&std_devs(&xtr), &std_devs(&ytr));
+    cfg.resolve_std(&std_devs(&xtr), &std_devs(&ytr))?;
     let mut m = Lwpr::new(21, 7, &cfg)?;
     let mut order: Vec<usize> = (0..xtr.len()).collect();
     let t0 = Instant::now();

@@ -129,11 +129,13 @@ fn fit(a: FitArgs) -> Result<()> {
     };
     let std_in: Vec<f64> = (0..k).map(|c| util::std_dev(&train.rows, c)).collect();
     let std_out: Vec<f64> = (k..cols).map(|c| util::std_dev(&train.rows, c)).collect();
-    cfg.resolve_std(&std_in, &std_out);
-    let mut model = Lwpr::new(k, n_out, &cfg).with_context(|| match &a.config {
+    let config_name = || match &a.config {
         Some(p) => format!("{}", p.display()),
         None => "the default config".into(),
-    })?;
+    };
+    cfg.resolve_std(&std_in, &std_out)
+        .with_context(|| format!("{} with {}", config_name(), a.train.display()))?;
+    let mut model = Lwpr::new(k, n_out, &cfg).with_context(config_name)?;
 
     let mut rng = ChaCha8Rng::seed_from_u64(a.seed);
     let mut order: Vec<usize> = (0..train.rows.len()).collect();
