@@ -308,21 +308,27 @@ fn bad_configs_and_save_paths_fail_before_training() {
         "{out} {err}"
     );
     // norm_in = "std" on an input whose standard deviation is above the normalisation range
-    // (values ±1e101): an error naming the config, the data, the parameter and the input.
+    // (values ±2^340, so that it is exactly 2^340 ≈ 2.2e102): an error naming the config, the
+    // data, the parameter, the input and the value.
     let wide = d.join("wide.csv");
+    let big = 2f64.powi(340);
     let rows: String = (0..50)
-        .map(|i| format!("{}e101,0.2,{}\n", 2 * (i % 2) - 1, i as f64 / 50.0))
+        .map(|i| {
+            format!(
+                "{:e},0.2,{}\n",
+                big * (2 * (i % 2) - 1) as f64,
+                i as f64 / 50.0
+            )
+        })
         .collect();
     std::fs::write(&wide, format!("x1,x2,y\n{rows}")).unwrap();
     std::fs::write(&cfg, "norm_in = \"std\"\n").unwrap();
     let (ok, out, err) = fit2(&wide, &data, &["--config", s(&cfg)]);
     assert!(!ok && out.is_empty(), "{out} {err}");
-    for w in [
-        "c.toml with",
-        "wide.csv",
-        "norm_in = \"std\": input 0's standard deviation 1",
-        "e101 is above 1e100",
-    ] {
+    let want = format!(
+        "norm_in[0] = \"std\" = {big:e}, the standard deviation of input 0, is above 1e100"
+    );
+    for w in ["c.toml", "wide.csv", &want] {
         assert!(err.contains(w), "'{w}' not in {err}");
     }
     // A constant test target (0.1: its computed variance is a rounding residue, not 0): nMSE

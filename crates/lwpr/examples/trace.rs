@@ -8,9 +8,10 @@
 //! [--epochs E] --out FILE` (E: 20 for cross2, 25 for cross21)
 
 use lwpr::datasets::{
-    cross21_config, cross_config, cross_grid, cross_train, embed, rotation, test_nmse, Data,
+    cross21_config, cross21_data, cross21_run, cross_config, cross_grid, cross_run, cross_train,
+    embed, predict_or_zero, rotation, test_nmse, Data, Embedding,
 };
-use lwpr::{Lwpr, LwprError};
+use lwpr::Lwpr;
 use rand::seq::SliceRandom;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -35,7 +36,15 @@ fn main() {
     };
     let epochs = get("--epochs").map_or(epochs, |e| e.parse().expect("--epochs: an integer"));
     let (train, test) = match &rot {
-        Some(r) => (embed(&flat, r), embed(&cross_grid(), r)),
+        Some(r) => {
+            // The same data as `cross21_data` (which does not return the 2-D points).
+            let (train, test, rot) = cross21_data(seed, Embedding::Rotation);
+            assert!(
+                &rot == r && embed(&flat, r).x == train.x,
+                "not cross21_data's samples"
+            );
+            (train, test)
+        }
         None => {
             let (x, y) = (flat.x.clone(), flat.y.clone());
             (Data { x, y }, cross_grid())
@@ -79,17 +88,22 @@ fn main() {
         }
     }
     writeln!(s, "test {}", test.y.len()).unwrap();
-    let mut y = [0.0];
     for x in &test.x {
-        let p = match m.predict(x, &mut y) {
-            Ok(_) => y[0],
-            Err(LwprError::NoActiveRf { .. }) => 0.0,
-            Err(e) => panic!("{e}"),
-        };
-        writeln!(s, "{p:?}").unwrap();
+        writeln!(s, "{:?}", predict_or_zero(&mut m, x).unwrap()).unwrap();
     }
     std::fs::write(&out, s).unwrap_or_else(|e| panic!("{out}: {e}"));
     let nmse = test_nmse(&mut m, &test).unwrap();
+    // The run of `osrl bench lwpr` for this seed ends with the same model.
+    let bench = match rot {
+        None => cross_run(&cfg, seed, epochs),
+        Some(_) => cross21_run(&cfg, seed, epochs),
+    }
+    .unwrap();
+    assert!(
+        bench.nmse == nmse && bench.n_rfs == m.n_rfs_total(),
+        "the trace is not the benchmark's run: nMSE {nmse} against {}",
+        bench.nmse
+    );
     println!(
         "{out}: {case} seed {seed} epochs {epochs}: {} RFs, nMSE {nmse:.6}",
         m.n_rfs_total()

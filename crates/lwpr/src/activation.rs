@@ -123,6 +123,7 @@ impl Top2 {
         Self::w(p, self.i2, self.q2, self.w2)
     }
 
+    /// The activation of RF `i` at distance `q`, `w` if the pass computed it; 0 for no RF.
     #[inline(always)]
     fn w(p: &Params, i: usize, q: f64, w: Option<f64>) -> f64 {
         if i < usize::MAX {

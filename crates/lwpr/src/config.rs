@@ -223,7 +223,7 @@ impl LwprConfig {
     /// let err = LwprConfig { norm_out: Norm::Keyword(NormKeyword::Std), ..Default::default() }
     ///     .resolve_std(&[1.0], &[1e101])
     ///     .unwrap_err();
-    /// assert!(err.to_string().contains("norm_out = \"std\""));
+    /// assert!(err.to_string().contains("norm_out[0] = \"std\" = 1e101"));
     /// ```
     pub fn resolve_std(&mut self, std_in: &[f64], std_out: &[f64]) -> Result<(), LwprError> {
         let resolve = |name: &str, what: &str, n: &Norm, s: &[f64]| {
@@ -232,12 +232,19 @@ impl LwprConfig {
             }
             let mut l = Vec::with_capacity(s.len());
             for (k, &v) in s.iter().enumerate() {
+                let hi = crate::error::num(crate::NORM_RANGE.1);
+                let fix = format!("give {name} explicitly or rescale the data");
+                if v == f64::INFINITY {
+                    return Err(LwprError::Config(format!(
+                        "{name}[{k}] = \"std\": the standard deviation of {what} {k} is too \
+                         large to compute (inf); {fix}"
+                    )));
+                }
                 if v > crate::NORM_RANGE.1 {
                     return Err(LwprError::Config(format!(
-                        "{name} = \"std\": {what} {k}'s standard deviation {} is above {}; \
-                         give {name} explicitly or rescale the data",
-                        crate::error::num(v),
-                        crate::error::num(crate::NORM_RANGE.1)
+                        "{name}[{k}] = \"std\" = {}, the standard deviation of {what} {k}, is \
+                         above {hi}; {fix}",
+                        crate::error::num(v)
                     )));
                 }
                 l.push(if v > 1e-12 { v } else { 1.0 });

@@ -212,18 +212,25 @@ pub fn median(mut v: Vec<f64>) -> f64 {
     }
 }
 
-/// Test MSE of `m` on `test` over the variance of its targets; a point without an active RF
-/// predicts 0 (as the reference library does). NaN for an empty `test`. Fails when a test
-/// input does not fit the model (wrong length, not finite).
-pub fn test_nmse(m: &mut Lwpr, test: &Data) -> Result<f64, LwprError> {
+/// The prediction of a one-output model at `x`, 0 where no RF is active (as the reference
+/// library predicts there, and as the benchmarks score it). Fails when `x` does not fit the
+/// model (wrong length, not finite) or the model has more than one output.
+pub fn predict_or_zero(m: &mut Lwpr, x: &[f64]) -> Result<f64, LwprError> {
     let mut y = [0.0];
+    match m.predict(x, &mut y) {
+        Ok(_) => Ok(y[0]),
+        Err(LwprError::NoActiveRf { .. }) => Ok(0.0),
+        Err(e) => Err(e),
+    }
+}
+
+/// Test MSE of `m` on `test` over the variance of its targets; a point without an active RF
+/// predicts 0 ([`predict_or_zero`]). NaN for an empty `test`. Fails when a test input does not
+/// fit the model (wrong length, not finite).
+pub fn test_nmse(m: &mut Lwpr, test: &Data) -> Result<f64, LwprError> {
     let mut se = 0.0;
     for (x, &t) in test.x.iter().zip(&test.y) {
-        let p = match m.predict(x, &mut y) {
-            Ok(_) => y[0],
-            Err(LwprError::NoActiveRf { .. }) => 0.0,
-            Err(e) => return Err(e),
-        };
+        let p = predict_or_zero(m, x)?;
         se += (p - t) * (p - t);
     }
     let n = test.y.len() as f64;

@@ -253,7 +253,8 @@ fn add(p: &Params, sub: &mut SubModel, ws: &mut Scratch, cx: SubCtx<'_>, top: &T
 #[inline(always)]
 fn prune(p: &Params, sub: &mut SubModel, cx: SubCtx<'_>, top: &Top2) -> bool {
     let (i1, i2) = (top.i1, top.i2);
-    let both = i2 < usize::MAX && top.w_sec(p) > p.cfg.w_prune;
+    // `w_sec` is 0 without a second RF, and `w_prune` is positive.
+    let both = top.w_sec(p) > p.cfg.w_prune;
     if !both {
         return false;
     }

@@ -301,11 +301,6 @@ fn random_configs_stay_finite_and_loadable() {
     assert!(skipped > 0 && removed > 0, "{skipped} {removed}");
 }
 
-/// A normalisation outside [`NORM_RANGE`] is refused with an error naming the entry; at the
-/// range's ends, with powers of two (so that scaling is exact), a model of scaled data is the
-/// unscaled one to the bit, and its metrics, centres, local models, predictions and Jacobians
-/// in user units are finite: the unscaled ones times the scales, exactly. (The input and
-/// output scales are independent, so that one used for the other would show.)
 /// `"std"` resolved to the data's standard deviations: tiny ones (constant columns) and NaN
 /// become 1; one above the range, or infinite, is refused, naming the parameter, the
 /// dimension and the value, and the config is left as it was.
@@ -326,12 +321,12 @@ fn std_normalisation_is_resolved_within_the_range() {
         (
             [1.0, 1e101],
             1.0,
-            "norm_in = \"std\": input 1's standard deviation 1e101 is above 1e100",
+            "norm_in[1] = \"std\" = 1e101, the standard deviation of input 1, is above 1e100",
         ),
         (
             [1.0, 1.0],
             f64::INFINITY,
-            "norm_out = \"std\": output 0's standard deviation inf is above 1e100",
+            "norm_out[0] = \"std\": the standard deviation of output 0 is too large to compute",
         ),
     ] {
         let mut cfg = LwprConfig {
@@ -357,6 +352,11 @@ fn std_normalisation_is_resolved_within_the_range() {
     );
 }
 
+/// A normalisation outside [`NORM_RANGE`] is refused with an error naming the entry; at the
+/// range's ends, with powers of two (so that scaling is exact), a model of scaled data is the
+/// unscaled one to the bit, and its metrics, centres, local models, predictions and Jacobians
+/// in user units are finite: the unscaled ones times the scales, exactly. (The input and
+/// output scales are independent, so that one used for the other would show.)
 #[test]
 fn normalisations_at_the_ends_of_their_range() {
     let (lo, hi) = NORM_RANGE;

@@ -14,8 +14,8 @@
 //! README), where a difference in the algorithm shows as 1e-8 and more within a few hundred
 //! updates.
 
-use lwpr::datasets::{cross21_config, cross_config, cross_grid, embed, Data};
-use lwpr::{Lwpr, LwprError};
+use lwpr::datasets::{cross21_config, cross_config, cross_grid, embed, predict_or_zero, Data};
+use lwpr::Lwpr;
 use nalgebra::DMatrix;
 use std::path::{Path, PathBuf};
 
@@ -31,75 +31,115 @@ struct Fixture {
     test_pred: Vec<f64>,
 }
 
-/// The rows of section `key` (a line `key count`, then `count` rows) at `*at`; moves past them.
-fn section<'a>(lines: &[&'a str], at: &mut usize, key: &str) -> (&'a str, Vec<&'a str>) {
-    let l = lines.get(*at).unwrap_or_else(|| panic!("no '{key}' line"));
-    let Some((k, v)) = l.split_once(' ').filter(|(k, _)| *k == key) else {
-        panic!("expected '{key} …', got '{l}'");
+/// The value and rows of section `key` (a line `key value`, then `value` rows when the value
+/// is a count) at `*at`; moves past them.
+fn section<'a>(
+    lines: &[&'a str],
+    at: &mut usize,
+    key: &str,
+) -> Result<(&'a str, Vec<&'a str>), String> {
+    let l = lines.get(*at).ok_or(format!("no '{key}' line"))?;
+    let v = match l.split_once(' ') {
+        Some((k, v)) if k == key => v,
+        _ => return Err(format!("expected '{key} …', got '{l}'")),
     };
-    let _ = k;
     let n = match key {
         "case" | "guard" => 0,
-        _ => v.parse().unwrap_or_else(|_| panic!("not a count: '{l}'")),
+        _ => v.parse().map_err(|_| format!("'{l}': not a count"))?,
     };
     let rows = lines
         .get(*at + 1..*at + 1 + n)
-        .expect("truncated fixture")
-        .to_vec();
+        .ok_or(format!("'{key}' announces {n} rows; the file ends before"))?;
     *at += 1 + n;
-    (v, rows)
+    Ok((v, rows.to_vec()))
 }
 
-/// Reads a fixture written by `scripts/lwpr_reference.py`.
-fn read(path: &Path) -> Fixture {
-    let text = std::fs::read_to_string(path)
-        .unwrap_or_else(|e| panic!("{}: {e}; run scripts/lwpr_reference.py", path.display()));
+/// Numbers separated by single spaces, exactly `n` of them.
+fn numbers(l: &str, n: usize) -> Result<Vec<f64>, String> {
+    let v: Vec<f64> = l
+        .split(' ')
+        .map(|t| t.parse().map_err(|_| format!("'{t}' is not a number")))
+        .collect::<Result<_, _>>()?;
+    match v.len() == n {
+        true => Ok(v),
+        false => Err(format!("'{l}': {} values, need {n}", v.len())),
+    }
+}
+
+/// Reads a fixture written by `scripts/lwpr_reference.py` (or `examples/trace.rs`).
+fn read(text: &str) -> Result<Fixture, String> {
     let lines: Vec<&str> = text.lines().filter(|l| !l.starts_with('#')).collect();
     let mut at = 0;
-    let case = section(&lines, &mut at, "case").0.to_string();
-    assert_eq!(
-        section(&lines, &mut at, "guard").0,
-        "1",
-        "the crate always applies the leverage guard: write the fixture without --no-guard"
-    );
-    let samples = section(&lines, &mut at, "samples").1;
-    let rot = section(&lines, &mut at, "rotation").1;
-    let updates = section(&lines, &mut at, "updates").1;
-    let test_pred = section(&lines, &mut at, "test").1;
-    assert_eq!(at, lines.len(), "{}: trailing lines", path.display());
-    let num = |t: &str| -> f64 { t.parse().unwrap_or_else(|_| panic!("not a number: '{t}'")) };
-    let row = |l: &str| -> Vec<f64> { l.split(' ').map(num).collect() };
+    let case = section(&lines, &mut at, "case")?.0.to_string();
+    if section(&lines, &mut at, "guard")?.0 != "1" {
+        return Err("the crate always applies the leverage guard: \
+                    write the fixture without --no-guard"
+            .into());
+    }
+    let samples = section(&lines, &mut at, "samples")?.1;
+    let rot = section(&lines, &mut at, "rotation")?.1;
+    let updates = section(&lines, &mut at, "updates")?.1;
+    let test_pred = section(&lines, &mut at, "test")?.1;
+    if at != lines.len() {
+        return Err(format!("{} lines after the test section", lines.len() - at));
+    }
+    let samples: Vec<Vec<f64>> = samples
+        .iter()
+        .map(|l| numbers(l, 3))
+        .collect::<Result<_, _>>()?;
     let flat = Data {
-        x: samples.iter().map(|l| row(l)[..2].to_vec()).collect(),
-        y: samples.iter().map(|l| row(l)[2]).collect(),
+        x: samples.iter().map(|r| r[..2].to_vec()).collect(),
+        y: samples.iter().map(|r| r[2]).collect(),
     };
     let d = rot.len();
-    let rot = (d > 0).then(|| DMatrix::from_row_iterator(d, d, rot.iter().flat_map(|l| row(l))));
+    let rot: Vec<Vec<f64>> = rot
+        .iter()
+        .map(|l| numbers(l, d))
+        .collect::<Result<_, _>>()?;
+    let rot = (d > 0).then(|| DMatrix::from_fn(d, d, |i, j| rot[i][j]));
+    let n = flat.y.len();
     let updates = updates
         .iter()
         .map(|l| match l.split(' ').collect::<Vec<_>>()[..] {
-            [i, p, r] => (i.parse().unwrap(), num(p), r.parse().unwrap()),
-            _ => panic!("bad update line '{l}'"),
+            [i, p, r] => match (i.parse::<usize>(), p.parse(), r.parse()) {
+                (Ok(i), Ok(p), Ok(r)) if i < n => Ok((i, p, r)),
+                _ => Err(format!("bad update line '{l}' ({n} samples)")),
+            },
+            _ => Err(format!("bad update line '{l}'")),
         })
-        .collect();
-    let test_pred = test_pred.iter().map(|l| num(l)).collect();
+        .collect::<Result<Vec<_>, _>>()?;
+    let test_pred: Vec<f64> = test_pred
+        .iter()
+        .map(|l| numbers(l, 1).map(|v| v[0]))
+        .collect::<Result<_, _>>()?;
     let grid = cross_grid();
+    if n == 0 || updates.is_empty() || test_pred.len() != grid.y.len() {
+        return Err(format!(
+            "{n} samples, {} updates, {} test predictions: need samples, updates and one \
+             prediction per point of the {}-point test grid",
+            updates.len(),
+            test_pred.len(),
+            grid.y.len()
+        ));
+    }
     let (train, test) = match &rot {
         Some(r) => (embed(&flat, r), embed(&grid, r)),
         None => (flat, grid),
     };
-    Fixture {
+    Ok(Fixture {
         case,
         train,
         updates,
         test,
         test_pred,
-    }
+    })
 }
 
 /// Replays a fixture and checks every prediction and RF count against it, to `tol`.
 fn replay(path: &Path, tol: f64) {
-    let f = read(path);
+    let text = std::fs::read_to_string(path)
+        .unwrap_or_else(|e| panic!("{}: {e}; run scripts/lwpr_reference.py", path.display()));
+    let f = read(&text).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     let cfg = match f.case.as_str() {
         "cross2" => cross_config(),
         "cross21" => cross21_config(),
@@ -117,13 +157,8 @@ fn replay(path: &Path, tol: f64) {
         );
         assert_eq!(m.n_rfs_total(), rfs, "{}: update {t}: RFs", f.case);
     }
-    let mut y = [0.0];
     for (k, (x, &want)) in f.test.x.iter().zip(&f.test_pred).enumerate() {
-        let got = match m.predict(x, &mut y) {
-            Ok(_) => y[0],
-            Err(LwprError::NoActiveRf { .. }) => 0.0,
-            Err(e) => panic!("{e}"),
-        };
+        let got = predict_or_zero(&mut m, x).unwrap();
         assert!(
             (got - want).abs() <= tol,
             "{}: test point {k}: prediction {got}, reference {want}",
@@ -146,6 +181,46 @@ fn cross2_agrees_with_the_independent_implementation() {
 #[test]
 fn cross21_agrees_with_the_independent_implementation() {
     replay(&fixture("reference_cross21.txt"), TOL);
+}
+
+/// A malformed or empty fixture is an error naming what is wrong, never a vacuous pass.
+#[test]
+fn malformed_fixtures_are_errors() {
+    let text = std::fs::read_to_string(fixture("reference_cross2.txt")).unwrap();
+    assert!(read(&text).is_ok());
+    let cut = |from: &str, to: &str| text.replacen(from, to, 1);
+    let updates = text.lines().find(|l| l.starts_with("updates ")).unwrap();
+    let samples_line = text.lines().find(|l| l.starts_with("samples ")).unwrap();
+    let first_sample = text
+        .lines()
+        .skip_while(|l| !l.starts_with("samples "))
+        .nth(1)
+        .unwrap();
+    let truncated = &text[..text.len() / 2];
+    for (bad, want) in [
+        (truncated.to_string(), "the file ends before"),
+        (cut(updates, "updates 0"), "expected 'test …'"),
+        (cut("\nguard 1\n", "\nguard 0\n"), "leverage guard"),
+        (cut(samples_line, "samples x"), "not a count"),
+        (
+            cut(first_sample, &format!("{first_sample} 1.0")),
+            "4 values, need 3",
+        ),
+        (cut(first_sample, "0.1 nope 0.2"), "'nope' is not a number"),
+        (format!("{}1.0\n", text), "1 lines after the test section"),
+    ] {
+        let e = read(&bad)
+            .err()
+            .unwrap_or_else(|| panic!("accepted, wanted '{want}'"));
+        assert!(e.contains(want), "'{want}' not in '{e}'");
+    }
+    // Sections present but empty.
+    let empty = "case cross2\nguard 1\nsamples 0\nrotation 0\nupdates 0\ntest 0\n";
+    let e = read(empty).err().expect("an empty fixture was accepted");
+    assert!(
+        e.contains("0 samples, 0 updates, 0 test predictions"),
+        "{e}"
+    );
 }
 
 #[test]

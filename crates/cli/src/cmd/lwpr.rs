@@ -134,7 +134,7 @@ fn fit(a: FitArgs) -> Result<()> {
         None => "the default config".into(),
     };
     cfg.resolve_std(&std_in, &std_out)
-        .with_context(|| format!("{} with {}", config_name(), a.train.display()))?;
+        .with_context(|| format!("{}, \"std\" of {}", config_name(), a.train.display()))?;
     let mut model = Lwpr::new(k, n_out, &cfg).with_context(config_name)?;
 
     let mut rng = ChaCha8Rng::seed_from_u64(a.seed);
