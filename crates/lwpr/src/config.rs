@@ -209,7 +209,7 @@ impl LwprConfig {
     ///
     /// Fails with [`crate::LwprError::Config`], leaving `self` unchanged, when a standard
     /// deviation it would use is above [`crate::NORM_RANGE`] or infinite; the message names
-    /// the parameter, the column and the value.
+    /// the parameter, the dimension and the value.
     ///
     /// ```
     /// use lwpr::{LwprConfig, Norm, NormKeyword};
@@ -230,10 +230,10 @@ impl LwprConfig {
             if *n != Norm::Keyword(NormKeyword::Std) {
                 return Ok(None);
             }
+            let hi = crate::error::num(crate::NORM_RANGE.1);
+            let fix = format!("give {name} explicitly or rescale the data");
             let mut l = Vec::with_capacity(s.len());
             for (k, &v) in s.iter().enumerate() {
-                let hi = crate::error::num(crate::NORM_RANGE.1);
-                let fix = format!("give {name} explicitly or rescale the data");
                 if v == f64::INFINITY {
                     return Err(LwprError::Config(format!(
                         "{name}[{k}] = \"std\": the standard deviation of {what} {k} is too \
