@@ -12,8 +12,8 @@ model file's docstring.
 Usage:
   pip install numpy
   python3 scripts/lwpr_reference.py fixtures [--out DIR]
-      writes DIR/reference_cross2.txt and DIR/reference_cross21.txt (default DIR:
-      crates/lwpr/tests/fixtures), the committed fixtures of the cross-check;
+      writes reference_cross2.txt, reference_cross21.txt and reference_cross21diag.txt, the
+      committed fixtures of the cross-check, into DIR (default crates/lwpr/tests/fixtures);
   python3 scripts/lwpr_reference.py one --case cross21 --seed S --epochs E [--no-guard] --out F
       one run at any length (LWPR_REFERENCE=F cargo test --release -p lwpr --test reference
       -- --ignored replays it);
@@ -33,7 +33,7 @@ import pathlib
 
 import numpy as np
 
-from lwpr_reference_model import Config, Model
+from lwpr_reference_model import CASES, Config, Model
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 OUT = ROOT / "crates" / "lwpr" / "tests" / "fixtures"
@@ -55,7 +55,7 @@ def run(case, seed, epochs, guard):
     pts = rng.uniform(-1.0, 1.0, (500, 2))
     ys = np.array([cross(a, b) for a, b in pts]) + rng.normal(0.0, 0.1, 500)
     rot = None
-    if case == "cross21":
+    if case != "cross2":
         q, r = np.linalg.qr(rng.normal(size=(21, 21)))
         rot = q * np.where(np.diag(r) < 0.0, -1.0, 1.0)[None, :]
     cfg = Config(case)
@@ -173,7 +173,7 @@ def main():
     fx = sub.add_parser("fixtures")
     fx.add_argument("--out", default=str(OUT))
     one = sub.add_parser("one")
-    one.add_argument("--case", choices=["cross2", "cross21"], required=True)
+    one.add_argument("--case", choices=CASES, required=True)
     one.add_argument("--seed", type=int, default=0)
     one.add_argument("--epochs", type=int, required=True)
     one.add_argument("--no-guard", action="store_true")
@@ -189,6 +189,7 @@ def main():
         # rates and (21-D) prune and grow a PLS direction (seed 21, update 2872).
         write(run("cross2", 0, 5, True), out / "reference_cross2.txt")
         write(run("cross21", 21, 6, True), out / "reference_cross21.txt")
+        write(run("cross21diag", 0, 3, True), out / "reference_cross21diag.txt")
     elif a.cmd == "one":
         write(run(a.case, a.seed, a.epochs, not a.no_guard), a.out)
     else:

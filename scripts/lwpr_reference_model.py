@@ -20,11 +20,17 @@ import math
 import numpy as np
 
 
+CASES = ("cross2", "cross21", "cross21diag")
+
+
 class Config:
-    """The cross tests' configs (lwpr::datasets::cross_config, cross21_config)."""
+    """The cross tests' configs (lwpr::datasets::cross_config, cross21_config, and the latter
+    with a diagonal metric, `cross21diag`)."""
 
     def __init__(self, case):
-        self.n = {"cross2": 2, "cross21": 21}[case]
+        if case not in CASES:
+            raise ValueError(f"unknown case '{case}': one of {', '.join(CASES)}")
+        self.n = 2 if case == "cross2" else 21
         init_d, self.w_prune = (25.0, 1.0) if case == "cross2" else (0.25, 0.7)
         n = self.n
         self.init_D = np.eye(n) * init_d
@@ -33,7 +39,9 @@ class Config:
         self.w_gen, self.meta_rate, self.penalty = 0.2, 250.0, 1e-6
         self.init_lambda, self.final_lambda, self.tau_lambda = 0.999, 0.99999, 0.9999
         self.init_s2, self.add_threshold = 1e-10, 0.5
-        self.upper = np.triu(np.ones((n, n), dtype=bool))  # the free elements of M
+        # The free elements of M: its upper triangle, or its diagonal (diag_only).
+        diag = case == "cross21diag"
+        self.free = np.eye(n, dtype=bool) if diag else np.triu(np.ones((n, n), dtype=bool))
         self.guard = True
 
 
@@ -141,7 +149,7 @@ def update_metric(cfg, rf, w, e_cv, e, x, stats):
     Ps = np.where(ok, s / ss, 0.0)
     Pse = e * Ps
     dJ1dw = (-E / W + e_cv**2 - np.sum(2.0 * Pse * rf.H[:R] + 2.0 * Ps * Ps * rf.r[:R])) / W
-    # Derivatives with respect to every element of M (only the upper triangle is used).
+    # Derivatives with respect to every element of M (only the free elements are used).
     dx = x - rf.c
     M, D = rf.M, rf.D
     pen = cfg.penalty / n
@@ -152,7 +160,7 @@ def update_metric(cfg, rf, w, e_cv, e, x, stats):
     row2 = np.sum(M * M, axis=1)  # sum over the row of M, M being upper triangular
     ddJ2dMdM = 4.0 * pen * (np.diag(D)[None, :] + row2[:, None] + M * M)
     dJdM = (w / W) * dJ2dM + dJ1dw * dwdM
-    up = cfg.upper
+    up = cfg.free
     max_m = np.max(np.abs(M[up]))
     # IDBD: the rates follow the correlation of successive gradients.
     dd = (

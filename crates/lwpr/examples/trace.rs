@@ -4,14 +4,14 @@
 //! final predictions on the test grid. `scripts/lwpr_reference.py replay FILE` then trains the
 //! independent implementation on the same samples and compares.
 //!
-//! `cargo run -p lwpr --release --example trace -- --test cross2|cross21 [--seed S]
-//! [--epochs E] --out FILE` (E: 20 for cross2, 25 for cross21)
+//! `cargo run -p lwpr --release --example trace -- --test cross2|cross21|cross21diag [--seed S]
+//! [--epochs E] --out FILE` (E: 20 for cross2, 25 for the others)
 
 use lwpr::datasets::{
     cross21_config, cross21_data, cross21_run, cross_config, cross_grid, cross_run, cross_train,
     embed, predict_or_zero, rotation, test_nmse, Data, Embedding,
 };
-use lwpr::Lwpr;
+use lwpr::{Lwpr, LwprConfig};
 use rand::seq::SliceRandom;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -32,7 +32,14 @@ fn main() {
     let (cfg, rot, epochs) = match case.as_str() {
         "cross2" => (cross_config(), None, 20),
         "cross21" => (cross21_config(), Some(rotation(&mut rng, 21)), 25),
-        c => panic!("--test {c}: cross2 or cross21"),
+        "cross21diag" => {
+            let cfg = LwprConfig {
+                diag_only: true,
+                ..cross21_config()
+            };
+            (cfg, Some(rotation(&mut rng, 21)), 25)
+        }
+        c => panic!("--test {c}: cross2, cross21 or cross21diag"),
     };
     let epochs = get("--epochs").map_or(epochs, |e| e.parse().expect("--epochs: an integer"));
     let (train, test) = match &rot {

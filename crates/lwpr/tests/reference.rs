@@ -5,7 +5,7 @@
 //! predictions on the test grid (`tests/fixtures/reference_*.txt`). This crate, replaying the
 //! same samples in the same order, must agree to 1e-9 on every one of them: RF creation (with
 //! and without a template), the PLS and metric updates with meta learning and rate halving,
-//! pruning, the growth of a PLS direction, and prediction.
+//! pruning, the growth of a PLS direction, and prediction, with a full and a diagonal metric.
 //!
 //! `LWPR_REFERENCE=FILE cargo test --release -p lwpr --test reference -- --ignored` replays
 //! another fixture, such as a full-length run written by `lwpr_reference.py one`, with the
@@ -15,7 +15,7 @@
 //! updates.
 
 use lwpr::datasets::{cross21_config, cross_config, cross_grid, embed, predict_or_zero, Data};
-use lwpr::Lwpr;
+use lwpr::{Lwpr, LwprConfig};
 use nalgebra::DMatrix;
 use std::path::{Path, PathBuf};
 
@@ -143,6 +143,10 @@ fn replay(path: &Path, tol: f64) {
     let cfg = match f.case.as_str() {
         "cross2" => cross_config(),
         "cross21" => cross21_config(),
+        "cross21diag" => LwprConfig {
+            diag_only: true,
+            ..cross21_config()
+        },
         c => panic!("unknown case '{c}'"),
     };
     let mut m = Lwpr::new(f.train.x[0].len(), 1, &cfg).unwrap();
@@ -181,6 +185,12 @@ fn cross2_agrees_with_the_independent_implementation() {
 #[test]
 fn cross21_agrees_with_the_independent_implementation() {
     replay(&fixture("reference_cross21.txt"), TOL);
+}
+
+/// The 21-D test with a diagonal metric (the metric step's other path).
+#[test]
+fn cross21diag_agrees_with_the_independent_implementation() {
+    replay(&fixture("reference_cross21diag.txt"), TOL);
 }
 
 /// A malformed or empty fixture is an error naming what is wrong, never a vacuous pass.
