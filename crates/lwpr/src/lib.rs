@@ -72,6 +72,7 @@ mod metric_call;
 mod metric_full;
 mod metric_wide;
 mod model;
+mod norm;
 pub mod params;
 mod partition;
 mod pls;
