@@ -234,7 +234,7 @@ fn malformed_fixtures_are_errors() {
 }
 
 #[test]
-#[ignore = "replays the fixture named by LWPR_REFERENCE"]
+#[ignore = "needs LWPR_REFERENCE=FILE; .ci/run runs it on a fixture the numpy code writes"]
 fn fixture_from_the_environment() {
     let p = std::env::var("LWPR_REFERENCE").expect("set LWPR_REFERENCE to a fixture file");
     let tol = std::env::var("LWPR_REFERENCE_TOL").map_or(TOL, |t| {
