@@ -46,6 +46,16 @@ def cross(a, b):
     )
 
 
+# The test grid of the cross tests, 41 x 41 points on [-1, 1]^2 (as lwpr::datasets::cross_grid).
+GRID = [(-1.0 + 0.05 * i, -1.0 + 0.05 * j) for i in range(41) for j in range(41)]
+
+
+def test_nmse(pred):
+    """MSE of predictions on GRID over the variance of the noiseless targets."""
+    target = np.array([cross(a, b) for a, b in GRID])
+    return np.mean((np.asarray(pred) - target) ** 2) / np.var(target)
+
+
 def embed(p, rot):
     """x = R [p1, p2, 0, ...], as lwpr::datasets::embed computes it (R[i,0] p1 + R[i,1] p2)."""
     return rot[:, 0] * p[0] + rot[:, 1] * p[1] if rot is not None else np.array(p)
@@ -64,10 +74,8 @@ def run(case, seed, epochs, guard):
     m = Model(cfg)
     order = np.concatenate([rng.permutation(500) for _ in range(epochs)])
     trace = [(m.update(embed(pts[i], rot), ys[i]), len(m.rfs)) for i in order]
-    grid = [(-1.0 + 0.05 * i, -1.0 + 0.05 * j) for i in range(41) for j in range(41)]
-    test = [m.predict(embed(p, rot)) for p in grid]
-    t = np.array([cross(a, b) for a, b in grid])
-    nmse = np.mean((np.array(test) - t) ** 2) / np.var(t)
+    test = [m.predict(embed(p, rot)) for p in GRID]
+    nmse = test_nmse(test)
     return dict(
         case=case,
         seed=seed,
@@ -153,15 +161,12 @@ def replay(path, guard):
                 f"update {k}: prediction {got} here, {want} in the trace; "
                 f"RFs {len(m.rfs)}, {nr}"
             )
-    grid = [(-1.0 + 0.05 * i, -1.0 + 0.05 * j) for i in range(41) for j in range(41)]
-    here = np.array([m.predict(embed(p, rot)) for p in grid])
+    here = np.array([m.predict(embed(p, rot)) for p in GRID])
     there = np.array([float(r[0]) for r in t["test"][1]])
-    target = np.array([cross(a, b) for a, b in grid])
-    nmse = lambda y: np.mean((y - target) ** 2) / np.var(target)  # noqa: E731
     print(
         f"{path}: {case}, {len(t['updates'][1])} updates, guard {int(guard)}: largest difference "
         f"per update {worst:.3e}, on the test grid {np.max(np.abs(here - there)):.3e}; "
-        f"nMSE {nmse(here):.6f} here, {nmse(there):.6f} in the trace; RFs {len(m.rfs)}; "
+        f"nMSE {test_nmse(here):.6f} here, {test_nmse(there):.6f} in the trace; RFs {len(m.rfs)}; "
         f"events {m.stats}" + (f"; first difference above 1e-9: {first}" if first else "")
     )
     return first is None and np.max(np.abs(here - there)) <= 1e-9
