@@ -23,9 +23,12 @@ Usage:
       samples of `osrl bench lwpr`) and prints the largest differences and both nMSE; exits
       with an error when a trace differs above 1e-9 (unless --no-guard).
 
+Fixtures written on another CPU (numpy choosing other SIMD kernels) may differ from the
+committed ones in the last bits; the crate's test allows 1e-9.
+
 A fixture holds the training samples (2-D points, targets, and the rotation that embeds them),
 the order of the updates, the prediction each update made before learning and the number of RFs
-after it, and the final model's predictions on the test grid.
+after it, and the final model's predictions and confidence bounds on the test grid.
 """
 
 import argparse
@@ -75,7 +78,7 @@ def run(case, seed, epochs, guard):
     order = np.concatenate([rng.permutation(500) for _ in range(epochs)])
     trace = [(m.update(embed(pts[i], rot), ys[i]), len(m.rfs)) for i in order]
     test = [m.predict(embed(p, rot)) for p in GRID]
-    nmse = test_nmse(test)
+    nmse = test_nmse([y for y, _ in test])
     return dict(
         case=case,
         seed=seed,
@@ -114,7 +117,7 @@ def write(res, path):
     for i, (p, k) in zip(res["order"], res["trace"]):
         lines.append(f"{i} {'nan' if math.isnan(p) else f(p)} {k}")
     lines.append(f"test {len(res['test'])}")
-    lines += [f(p) for p in res["test"]]
+    lines += [f"{f(y)} {'nan' if math.isnan(c) else f(c)}" for y, c in res["test"]]
     pathlib.Path(path).write_text("\n".join(lines) + "\n")
     print(
         f"{path}: {res['case']} seed {res['seed']} epochs {res['epochs']}: {res['stats']}, "
@@ -162,14 +165,21 @@ def replay(path, guard):
                 f"RFs {len(m.rfs)}, {nr}"
             )
     here = np.array([m.predict(embed(p, rot)) for p in GRID])
-    there = np.array([float(r[0]) for r in t["test"][1]])
+    there = np.array([[float(v) for v in r] for r in t["test"][1]])
+    # Predictions, and confidence bounds where both have an active RF (NaN in both elsewhere).
+    grid = np.max(np.abs(here[:, 0] - there[:, 0]))
+    both = ~np.isnan(here[:, 1]) & ~np.isnan(there[:, 1])
+    conf = np.max(np.abs(here[both, 1] - there[both, 1]), initial=0.0)
+    if np.any(np.isnan(here[:, 1]) != np.isnan(there[:, 1])):
+        conf = math.inf
     print(
         f"{path}: {case}, {len(t['updates'][1])} updates, guard {int(guard)}: largest difference "
-        f"per update {worst:.3e}, on the test grid {np.max(np.abs(here - there)):.3e}; "
-        f"nMSE {test_nmse(here):.6f} here, {test_nmse(there):.6f} in the trace; RFs {len(m.rfs)}; "
-        f"events {m.stats}" + (f"; first difference above 1e-9: {first}" if first else "")
+        f"per update {worst:.3e}, on the test grid {grid:.3e} (confidence bounds {conf:.3e}); "
+        f"nMSE {test_nmse(here[:, 0]):.6f} here, {test_nmse(there[:, 0]):.6f} in the trace; "
+        f"RFs {len(m.rfs)}; events {m.stats}"
+        + (f"; first difference above 1e-9: {first}" if first else "")
     )
-    return first is None and np.max(np.abs(here - there)) <= 1e-9
+    return first is None and grid <= 1e-9 and conf <= 1e-9
 
 
 def main():

@@ -19,7 +19,6 @@ import math
 
 import numpy as np
 
-
 CASES = ("cross2", "cross21", "cross21diag")
 
 
@@ -256,11 +255,22 @@ class Model:
         return yp / sw if sw > 0 else math.nan
 
     def predict(self, x, cutoff=0.001):
-        yp = sw = 0.0
+        """The prediction and its confidence bound (LWPR.md, "Prediction and confidence"); 0
+        and NaN where no trusted RF is active."""
+        yp = sw = wyy = wconf = 0.0
         for rf in self.rfs:
             w = self.activation(rf, x)
             if w > cutoff and rf.trust:
                 R = rf.R if rf.n_data[rf.R - 1] > 2 * self.cfg.n else rf.R - 1
-                yp += w * (rf.beta0 + rf.beta[:R] @ project(rf, x - rf.mean_x, R))
+                s = project(rf, x - rf.mean_x, R)
+                yk = rf.beta0 + rf.beta[:R] @ s
+                # The RF's variance, from the last direction it predicts with.
+                sigma2 = rf.sum_e_cv2[R - 1] / (rf.sum_w[R - 1] - rf.SSp)
+                wconf += w * sigma2 * (1.0 + w * np.sum(s * s / rf.SSs2[:R]))
+                yp += w * yk
+                wyy += w * yk * yk
                 sw += w
-        return yp / sw if sw > 0 else 0.0
+        if sw <= 0:
+            return 0.0, math.nan
+        y = yp / sw
+        return y, math.sqrt(abs(wconf + wyy - yp * y)) / sw

@@ -1,7 +1,7 @@
 //! Writes one seed of a cross test as run by `lwpr::datasets` (the same samples, order and
 //! config as `osrl bench lwpr`) in the fixture format of `tests/reference.rs`: the 2-D samples,
 //! the rotation, every update's sample index, prediction before learning and RF count, and the
-//! final predictions on the test grid. `scripts/lwpr_reference.py replay FILE` then trains the
+//! final predictions and confidence bounds on the test grid. `scripts/lwpr_reference.py replay FILE` then trains the
 //! independent implementation on the same samples and compares.
 //!
 //! `cargo run -p lwpr --release --example trace -- --test cross2|cross21|cross21diag [--seed S]
@@ -9,7 +9,7 @@
 
 use lwpr::datasets::{
     cross21_config, cross21_data, cross21_run, cross_config, cross_grid, cross_run, cross_train,
-    embed, predict_or_zero, rotation, test_nmse, Data, Embedding,
+    embed, predict_conf_or_nan, rotation, test_nmse, Data, Embedding,
 };
 use lwpr::{Lwpr, LwprConfig};
 use rand::seq::SliceRandom;
@@ -96,7 +96,13 @@ fn main() {
     }
     writeln!(s, "test {}", test.y.len()).unwrap();
     for x in &test.x {
-        writeln!(s, "{:?}", predict_or_zero(&mut m, x).unwrap()).unwrap();
+        let (y, conf) = predict_conf_or_nan(&mut m, x).unwrap();
+        let conf = if conf.is_nan() {
+            "nan".into()
+        } else {
+            format!("{conf:?}")
+        };
+        writeln!(s, "{y:?} {conf}").unwrap();
     }
     std::fs::write(&out, s).unwrap_or_else(|e| panic!("{out}: {e}"));
     let nmse = test_nmse(&mut m, &test).unwrap();

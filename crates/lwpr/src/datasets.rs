@@ -224,6 +224,18 @@ pub fn predict_or_zero(m: &mut Lwpr, x: &[f64]) -> Result<f64, LwprError> {
     }
 }
 
+/// [`predict_or_zero`] with the confidence bound of [`Lwpr::predict_conf`]: `(ŷ, conf)`, and
+/// `(0, NaN)` where no RF is active (the reference library reports 1e20 there). Fails as
+/// [`predict_or_zero`] does.
+pub fn predict_conf_or_nan(m: &mut Lwpr, x: &[f64]) -> Result<(f64, f64), LwprError> {
+    let (mut y, mut conf) = ([0.0], [0.0]);
+    match m.predict_conf(x, &mut y, &mut conf) {
+        Ok(_) => Ok((y[0], conf[0])),
+        Err(LwprError::NoActiveRf { .. }) => Ok((0.0, f64::NAN)),
+        Err(e) => Err(e),
+    }
+}
+
 /// Test MSE of `m` on `test` over the variance of its targets; a point without an active RF
 /// predicts 0 ([`predict_or_zero`]). NaN for an empty `test`. Fails when a test input does not
 /// fit the model (wrong length, not finite).

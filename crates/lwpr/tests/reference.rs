@@ -2,10 +2,12 @@
 //! second LWPR in plain numpy, written from `shared/LWPR.md` and the reference C library's
 //! behaviour and sharing no code with this crate; `scripts/lwpr_reference.py` runs it. It trained on the two cross tests' configs and recorded
 //! every update's prediction (made before learning) and RF count, and the final model's
-//! predictions on the test grid (`tests/fixtures/reference_*.txt`). This crate, replaying the
+//! predictions and confidence bounds on the test grid (`tests/fixtures/reference_*.txt`). This crate, replaying the
 //! same samples in the same order, must agree to 1e-9 on every one of them: RF creation (with
 //! and without a template), the PLS and metric updates with meta learning and rate halving,
-//! pruning, the growth of a PLS direction, and prediction, with a full and a diagonal metric.
+//! pruning, the growth of a PLS direction, and prediction with its confidence bound (which
+//! reads the statistics the predictions do not: `SSp`, the last direction's `sum_w` and
+//! `sum_e_cv2`), with a full and a diagonal metric.
 //!
 //! `LWPR_REFERENCE=FILE cargo test --release -p lwpr --test reference -- --ignored` replays
 //! another fixture, such as a full-length run written by `lwpr_reference.py one`, with the
@@ -14,12 +16,13 @@
 //! README), where a difference in the algorithm shows as 1e-8 and more within a few hundred
 //! updates.
 
-use lwpr::datasets::{cross21_config, cross_config, cross_grid, embed, predict_or_zero, Data};
+use lwpr::datasets::{cross21_config, cross_config, cross_grid, embed, predict_conf_or_nan, Data};
 use lwpr::{Lwpr, LwprConfig};
 use nalgebra::DMatrix;
 use std::path::{Path, PathBuf};
 
-/// Agreement required of every prediction (the targets are of order 1).
+/// Agreement required of every prediction and confidence bound (the targets are of order 1,
+/// the bounds of order 0.1).
 const TOL: f64 = 1e-9;
 
 struct Fixture {
@@ -28,7 +31,8 @@ struct Fixture {
     /// Per update: sample index, the reference's prediction (NaN: no trustworthy RF), RFs after.
     updates: Vec<(usize, f64, usize)>,
     test: Data,
-    test_pred: Vec<f64>,
+    /// Per test point: the reference's prediction and confidence bound (NaN: no active RF).
+    test_pred: Vec<(f64, f64)>,
 }
 
 /// The value and rows of section `key` (a line `key value`, then `value` rows when the value
@@ -108,9 +112,9 @@ fn read(text: &str) -> Result<Fixture, String> {
             _ => Err(format!("bad update line '{l}'")),
         })
         .collect::<Result<Vec<_>, _>>()?;
-    let test_pred: Vec<f64> = test_pred
+    let test_pred: Vec<(f64, f64)> = test_pred
         .iter()
-        .map(|l| numbers(l, 1).map(|v| v[0]))
+        .map(|l| numbers(l, 2).map(|v| (v[0], v[1])))
         .collect::<Result<_, _>>()?;
     let grid = cross_grid();
     if n == 0 || updates.is_empty() || test_pred.len() != grid.y.len() {
@@ -162,10 +166,11 @@ fn replay(path: &Path, tol: f64) {
         assert_eq!(m.n_rfs_total(), rfs, "{}: update {t}: RFs", f.case);
     }
     for (k, (x, &want)) in f.test.x.iter().zip(&f.test_pred).enumerate() {
-        let got = predict_or_zero(&mut m, x).unwrap();
+        let got = predict_conf_or_nan(&mut m, x).unwrap();
+        let conf_same = (got.1.is_nan() && want.1.is_nan()) || (got.1 - want.1).abs() <= tol;
         assert!(
-            (got - want).abs() <= tol,
-            "{}: test point {k}: prediction {got}, reference {want}",
+            (got.0 - want.0).abs() <= tol && conf_same,
+            "{}: test point {k}: prediction and confidence bound {got:?}, reference {want:?}",
             f.case
         );
     }
@@ -217,7 +222,18 @@ fn malformed_fixtures_are_errors() {
             "4 values, need 3",
         ),
         (cut(first_sample, "0.1 nope 0.2"), "'nope' is not a number"),
-        (format!("{}1.0\n", text), "1 lines after the test section"),
+        (
+            format!("{}1.0 0.1\n", text),
+            "1 lines after the test section",
+        ),
+        (
+            {
+                let last = text.lines().last().unwrap();
+                let pred = last.split(' ').next().unwrap();
+                cut(&format!("\n{last}\n"), &format!("\n{pred}\n"))
+            },
+            "1 values, need 2",
+        ),
     ] {
         let e = read(&bad)
             .err()
