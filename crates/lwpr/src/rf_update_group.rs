@@ -12,7 +12,7 @@
 //! next one's. Interleaved by steps, neighbouring steps belong to different RFs and are
 //! independent. Measured (fingerprint, 2-D cross, seed 0, 20 epochs, 16 interleaved runs): the
 //! update about 9 % faster when the machine is quiet (median ratios 0.904–0.913), about 1 %
-//! when a neighbour shares the core; 2.3 % fewer instructions (`crates/lwpr/README.md`,
+//! when a neighbour shares the core; 2.3 % fewer instructions (`crates/lwpr/SPEED.md`,
 //! ninth round).
 
 use crate::metric::MetricAcc;
