@@ -170,8 +170,8 @@ def replay(path, guard):
     grid = np.max(np.abs(here[:, 0] - there[:, 0]))
     both = ~np.isnan(here[:, 1]) & ~np.isnan(there[:, 1])
     conf = np.max(np.abs(here[both, 1] - there[both, 1]), initial=0.0)
-    if np.any(np.isnan(here[:, 1]) != np.isnan(there[:, 1])):
-        conf = math.inf
+    if np.any(np.isnan(here[:, 1]) != np.isnan(there[:, 1])) or not np.any(both):
+        conf = math.inf  # NaN on one side only, or nothing to compare
     print(
         f"{path}: {case}, {len(t['updates'][1])} updates, guard {int(guard)}: largest difference "
         f"per update {worst:.3e}, on the test grid {grid:.3e} (confidence bounds {conf:.3e}); "

@@ -8,7 +8,9 @@ library differ or LWPR.md is silent, this follows the C library, as the crate do
 - a PLS direction's metric terms count only when n_data_j (1 - lambda_0) > 0.1 (lambda of the
   first direction for every j);
 - a new RF's mean starts at 0 (the C library's zeroed allocation; it is replaced by the first
-  sample it learns from, whose weight dwarfs the 1e-10 of the empty statistics).
+  sample it learns from, whose weight dwarfs the 1e-10 of the empty statistics);
+- the confidence bound reads sum_e_cv2 and sum_w of the last direction the RF predicts with
+  (LWPR.md writes R, the last direction, even while it does not predict yet).
 Where the crate deviates from the C library on purpose, so does this, switchable:
 - the leverage guard (Config.guard, on by default): the metric terms of a sample with leverage
   h >= 1 are skipped, where the C library divides by 1 - h <= 0;

@@ -1,8 +1,8 @@
 //! Writes one seed of a cross test as run by `lwpr::datasets` (the same samples, order and
 //! config as `osrl bench lwpr`) in the fixture format of `tests/reference.rs`: the 2-D samples,
 //! the rotation, every update's sample index, prediction before learning and RF count, and the
-//! final predictions and confidence bounds on the test grid. `scripts/lwpr_reference.py replay FILE` then trains the
-//! independent implementation on the same samples and compares.
+//! final predictions and confidence bounds on the test grid. `scripts/lwpr_reference.py replay
+//! FILE` then trains the independent implementation on the same samples and compares.
 //!
 //! `cargo run -p lwpr --release --example trace -- --test cross2|cross21|cross21diag [--seed S]
 //! [--epochs E] --out FILE` (E: 20 for cross2, 25 for the others)

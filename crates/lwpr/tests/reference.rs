@@ -1,13 +1,14 @@
 //! Cross-check against an independent implementation. `scripts/lwpr_reference_model.py` is a
 //! second LWPR in plain numpy, written from `shared/LWPR.md` and the reference C library's
-//! behaviour and sharing no code with this crate; `scripts/lwpr_reference.py` runs it. It trained on the two cross tests' configs and recorded
-//! every update's prediction (made before learning) and RF count, and the final model's
-//! predictions and confidence bounds on the test grid (`tests/fixtures/reference_*.txt`). This crate, replaying the
-//! same samples in the same order, must agree to 1e-9 on every one of them: RF creation (with
-//! and without a template), the PLS and metric updates with meta learning and rate halving,
-//! pruning, the growth of a PLS direction, and prediction with its confidence bound (which
-//! reads the statistics the predictions do not: `SSp`, the last direction's `sum_w` and
-//! `sum_e_cv2`), with a full and a diagonal metric.
+//! behaviour and sharing no code with this crate; `scripts/lwpr_reference.py` runs it. It
+//! trained on the two cross tests' configs and recorded every update's prediction (made before
+//! learning) and RF count, and the final model's predictions and confidence bounds on the test
+//! grid (`tests/fixtures/reference_*.txt`). This crate, replaying the same samples in the same
+//! order, must agree to 1e-9 on every one of them: RF creation (with and without a template),
+//! the PLS and metric updates with meta learning and rate halving, pruning, the growth of a PLS
+//! direction, and prediction with its confidence bound (which reads the statistics the
+//! predictions do not: `SSp`, and `sum_w` and `sum_e_cv2` of the last direction an RF predicts
+//! with), with a full and a diagonal metric.
 //!
 //! `LWPR_REFERENCE=FILE cargo test --release -p lwpr --test reference -- --ignored` replays
 //! another fixture, such as a full-length run written by `lwpr_reference.py one`, with the
@@ -126,6 +127,10 @@ fn read(text: &str) -> Result<Fixture, String> {
             grid.y.len()
         ));
     }
+    // A bound NaN in both (no active RF) compares equal: some must be finite.
+    if !test_pred.iter().any(|p| p.1.is_finite()) {
+        return Err("no finite confidence bound on the test grid: nothing to compare".into());
+    }
     let (train, test) = match &rot {
         Some(r) => (embed(&flat, r), embed(&grid, r)),
         None => (flat, grid),
@@ -174,6 +179,14 @@ fn replay(path: &Path, tol: f64) {
             f.case
         );
     }
+    // Far from every RF: no support, so (0, NaN), the convention both sides write.
+    let far = vec![100.0; f.test.x[0].len()];
+    let got = predict_conf_or_nan(&mut m, &far).unwrap();
+    assert!(
+        got.0 == 0.0 && got.1.is_nan(),
+        "{}: {got:?} far outside",
+        f.case
+    );
 }
 
 fn fixture(name: &str) -> PathBuf {
@@ -233,6 +246,21 @@ fn malformed_fixtures_are_errors() {
                 cut(&format!("\n{last}\n"), &format!("\n{pred}\n"))
             },
             "1 values, need 2",
+        ),
+        (
+            {
+                let at = text.find("\ntest ").unwrap();
+                let (head, tail) = text.split_at(at);
+                let tail: Vec<String> = tail
+                    .lines()
+                    .map(|l| match l.split_once(' ') {
+                        Some((y, _)) if !l.starts_with("test ") => format!("{y} nan"),
+                        _ => l.to_string(),
+                    })
+                    .collect();
+                format!("{head}{}\n", tail.join("\n"))
+            },
+            "no finite confidence bound",
         ),
     ] {
         let e = read(&bad)
