@@ -17,6 +17,15 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use std::fmt::Write;
 
+/// `v` as the fixtures write it: the shortest exact decimal, or `nan`.
+fn num(v: f64) -> String {
+    if v.is_nan() {
+        "nan".into()
+    } else {
+        format!("{v:?}")
+    }
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let get = |k: &str| {
@@ -85,24 +94,14 @@ fn main() {
         order.shuffle(&mut order_rng);
         for &i in &order {
             m.update(&train.x[i], &[train.y[i]]).unwrap();
-            let p = m.last_update_prediction()[0];
-            let p = if p.is_nan() {
-                "nan".into()
-            } else {
-                format!("{p:?}")
-            };
+            let p = num(m.last_update_prediction()[0]);
             writeln!(s, "{i} {p} {}", m.n_rfs_total()).unwrap();
         }
     }
     writeln!(s, "test {}", test.y.len()).unwrap();
     for x in &test.x {
         let (y, conf) = predict_conf_or_nan(&mut m, x).unwrap();
-        let conf = if conf.is_nan() {
-            "nan".into()
-        } else {
-            format!("{conf:?}")
-        };
-        writeln!(s, "{y:?} {conf}").unwrap();
+        writeln!(s, "{y:?} {}", num(conf)).unwrap();
     }
     std::fs::write(&out, s).unwrap_or_else(|e| panic!("{out}: {e}"));
     let nmse = test_nmse(&mut m, &test).unwrap();
