@@ -34,7 +34,8 @@
 //!   read it, and the RF goes once it reaches the metric).
 //!
 //! The reference library's accuracy benchmarks (the 2-D cross and its 21-D rotation) are in
-//! [`datasets`]; `osrl bench lwpr --json` runs them.
+//! `datasets`, behind the cargo feature of that name (off by default); `osrl bench lwpr --json`
+//! runs them.
 //!
 //! Update and predict reuse buffers held by the model and do not allocate in steady state.
 //! Models save and load bit-exactly ([`Lwpr::save`], [`Lwpr::load`]).
@@ -63,6 +64,7 @@
 
 mod activation;
 mod config;
+#[cfg(feature = "datasets")]
 pub mod datasets;
 mod error;
 mod io;
