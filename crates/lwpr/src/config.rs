@@ -1,10 +1,12 @@
 //! The user-facing configuration: every parameter of the reference library with its default.
 //!
-//! Field names are the snake-case parameter names of `shared/LWPR.md`, so a TOML or JSON file
-//! maps onto [`LwprConfig`] directly; unknown keys are rejected. [`LwprConfig::validate`] runs
-//! once, in [`crate::Lwpr::new`], and resolves the config into [`crate::params::Params`].
+//! Field names are the snake-case parameter names of the reference library (`docs/lwpr.md`,
+//! "Parameters"), so a TOML or JSON file maps onto [`LwprConfig`] directly; unknown keys are
+//! rejected. [`LwprConfig::validate`] runs once, in [`crate::Lwpr::new`], and resolves the config
+//! into [`crate::Params`].
 
-pub use crate::norm::{Norm, NormKeyword};
+use crate::norm::{Norm, NormKeyword};
+use crate::LwprError;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 /// Serde for enums that are untagged in human-readable formats (TOML, JSON) and externally
@@ -59,7 +61,8 @@ pub enum Kernel {
 /// Which of two overlapping receptive fields is pruned.
 ///
 /// The default is [`PruneRule::Wider`], what the reference C library v1.2 does, although
-/// `shared/LWPR.md` (and the library's own documentation and Matlab code) say "the narrower".
+/// the written description of LWPR (`docs/lwpr.md`, the library's own documentation and its
+/// Matlab code) says "the narrower".
 /// Evidence (21-D rotated cross of issue 4, 10 seeds): with `Wider` the median is 40 RFs
 /// (reference library: 39) and nMSE 0.054; with `Narrower` the partition collapses on some
 /// seeds (seed 1: 27 RFs at epoch 20, 2 at epoch 24), median 28.5 RFs and nMSE 0.120. With a
@@ -68,8 +71,8 @@ pub enum Kernel {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
 #[serde(rename_all = "lowercase")]
 pub enum PruneRule {
-    /// The narrower one (larger trace of `D`), as `shared/LWPR.md`, the reference library's
-    /// documentation and its Matlab code specify.
+    /// The narrower one (larger trace of `D`), as the written description of LWPR, the
+    /// reference library's documentation and its Matlab code specify.
     Narrower,
     /// The wider one (smaller trace of `D`), as the reference C library v1.2 actually does
     /// (its source marks the comparison "original logic was reversed -- check"). Default.
@@ -125,14 +128,14 @@ pub struct LwprConfig {
     pub add_threshold: f64,
     /// Kernel. Default Gaussian.
     pub kernel: Kernel,
-    /// Inputs are divided by these (input units), each within [`crate::params::NORM_RANGE`]
+    /// Inputs are divided by these (input units), each within [`crate::NORM_RANGE`]
     /// (1e-100 to 1e100). Default 1.
     pub norm_in: Norm,
     /// Outputs are divided by these (output units), each within
-    /// [`crate::params::NORM_RANGE`] (1e-100 to 1e100). Default 1.
+    /// [`crate::NORM_RANGE`] (1e-100 to 1e100). Default 1.
     pub norm_out: Norm,
     /// Which RF of an overlapping pair is pruned. Default `"wider"` (the reference C library;
-    /// `shared/LWPR.md` says narrower, see [`PruneRule`]).
+    /// its documentation says narrower, see [`PruneRule`]).
     pub prune_rule: PruneRule,
     /// Receptive fields with activation `w ≤ cutoff` are skipped when predicting. Default 0.001.
     pub cutoff: f64,
@@ -177,13 +180,37 @@ impl Default for LwprConfig {
 }
 
 impl LwprConfig {
-    /// Checks every value against the model's dimensions and resolves the config.
-    /// Fails with [`crate::LwprError::Config`] naming the first bad parameter.
-    pub fn validate(
-        &self,
-        n_in: usize,
-        n_out: usize,
-    ) -> Result<crate::params::Params, crate::LwprError> {
-        crate::params::Params::from_config(self, n_in, n_out)
+    /// Replaces `"std"` normalisations by the given per-dimension standard deviations
+    /// (values ≤ 1e-12, and NaN, become 1, so constant columns are left unscaled).
+    ///
+    /// Fails with [`crate::LwprError::Config`], leaving `self` unchanged, when a standard
+    /// deviation it would use is above [`crate::NORM_RANGE`] or infinite; the message names
+    /// the parameter, the dimension and the value.
+    ///
+    /// ```
+    /// use lwpr::{LwprConfig, Norm, NormKeyword};
+    /// let mut cfg = LwprConfig {
+    ///     norm_in: Norm::Keyword(NormKeyword::Std),
+    ///     ..Default::default()
+    /// };
+    /// cfg.resolve_std(&[2.0, 0.0], &[5.0]).unwrap();
+    /// assert_eq!(cfg.norm_in, Norm::List(vec![2.0, 1.0]));
+    /// assert_eq!(cfg.norm_out, Norm::Scalar(1.0)); // not "std": left as it was
+    /// let err = LwprConfig { norm_out: Norm::Keyword(NormKeyword::Std), ..Default::default() }
+    ///     .resolve_std(&[1.0], &[1e101])
+    ///     .unwrap_err();
+    /// assert!(err.to_string().contains("norm_out[0] = \"std\" = 1e101"));
+    /// ```
+    pub fn resolve_std(&mut self, std_in: &[f64], std_out: &[f64]) -> Result<(), LwprError> {
+        // Both first, so that an error leaves the config as it was.
+        let norm_in = crate::norm::resolve("norm_in", "input", &self.norm_in, std_in)?;
+        let norm_out = crate::norm::resolve("norm_out", "output", &self.norm_out, std_out)?;
+        if let Some(n) = norm_in {
+            self.norm_in = n;
+        }
+        if let Some(n) = norm_out {
+            self.norm_out = n;
+        }
+        Ok(())
     }
 }

@@ -62,38 +62,34 @@
 
 #![allow(clippy::needless_range_loop)] // index loops mirror the maths
 
-mod activation;
 mod config;
 #[cfg(feature = "datasets")]
 pub mod datasets;
+mod distance;
 mod error;
+mod fast;
 mod io;
-mod metric;
-mod metric_2d;
-mod metric_call;
-mod metric_full;
-mod metric_wide;
 mod model;
 mod norm;
+mod numeric;
 pub mod params;
 mod partition;
 mod pls;
 mod predict;
 mod rf;
-mod rf_update;
-mod rf_update_2d;
-mod rf_update_group;
 mod scratch;
-mod simd;
-mod update_sub;
+mod update;
+mod validate;
 
-pub use config::{Kernel, LwprConfig, MetricInit, Norm, NormKeyword, PruneRule};
+pub use config::{Kernel, LwprConfig, MetricInit, PruneRule};
 pub use error::{LwprError, MAX_NORMALISED};
 pub use io::{write_atomic, FORMAT_VERSION, MAGIC};
 pub use model::{Lwpr, UpdateInfo, Warnings};
-pub use params::{Params, NORM_RANGE};
-pub use partition::{Activation, LocalModel, RfEvent, RfId, RfView};
+pub use norm::{Norm, NormKeyword, NORM_RANGE};
+pub use params::Params;
+pub use partition::{LocalModel, RfView};
 pub use predict::Support;
+pub use rf::{Activation, RfEvent, RfId};
 
 #[cfg(test)]
 mod tests;

@@ -1,12 +1,12 @@
-//! The model and one update (`shared/LWPR.md`, "One update").
+//! The model and one update (`docs/lwpr.md`, "One update"): the checks and the normalisation
+//! of a sample (step 1), then the update of each sub-model (`update/`, on the fast path).
 
 use crate::config::LwprConfig;
 use crate::error::{check_scale, check_vec};
 use crate::params::Params;
-use crate::partition::RfEvent;
-use crate::rf::SubModel;
+use crate::rf::{RfEvent, SubModel};
 use crate::scratch::Scratch;
-use crate::update_sub::{update_sub, SubCtx};
+use crate::update::{SubCtx, SubOutcome};
 use crate::LwprError;
 use serde::{Deserialize, Serialize};
 
@@ -131,6 +131,18 @@ impl Lwpr {
     /// magnitude once divided by its `norm_in`/`norm_out` ([`LwprError::Scale`]). RF additions
     /// and removals are queued as [`RfEvent`]s.
     pub fn update(&mut self, x: &[f64], y: &[f64]) -> Result<UpdateInfo, LwprError> {
+        self.update_by(x, y, crate::fast::update_sub)
+    }
+
+    /// [`Lwpr::update`] with each sub-model updated by `update_sub` (the fast path; tests pass
+    /// the reference, `update::update_sub::<Reference>`, or the fast path with some
+    /// specialisations off).
+    pub(crate) fn update_by(
+        &mut self,
+        x: &[f64],
+        y: &[f64],
+        update_sub: impl Fn(&Params, &mut SubModel, &mut Scratch, SubCtx<'_>) -> SubOutcome,
+    ) -> Result<UpdateInfo, LwprError> {
         check_vec("x", x, self.p.n_in)?;
         check_vec("y", y, self.p.n_out)?;
         // Inputs the model does not use (outside `kernel_dims` and `regression_dims`) are free.

@@ -1,7 +1,9 @@
-//! Input and output normalisation: [`Norm`] (a divisor, one per dimension, or `"std"`) and the
-//! resolution of `"std"` from the training data ([`LwprConfig::resolve_std`]).
+//! Input and output normalisation: [`Norm`] (a divisor, one per dimension, or `"std"`), the
+//! range every divisor must lie in, and the resolution of `"std"` from the training data's
+//! standard deviations (for [`crate::LwprConfig::resolve_std`]).
 
-use crate::{LwprConfig, LwprError};
+use crate::error::num;
+use crate::LwprError;
 use serde::{Deserialize, Serialize};
 
 /// Marker for `"std"` in [`Norm`].
@@ -31,63 +33,43 @@ impl Default for Norm {
     }
 }
 
-impl LwprConfig {
-    /// Replaces `"std"` normalisations by the given per-dimension standard deviations
-    /// (values ≤ 1e-12, and NaN, become 1, so constant columns are left unscaled).
-    ///
-    /// Fails with [`crate::LwprError::Config`], leaving `self` unchanged, when a standard
-    /// deviation it would use is above [`crate::NORM_RANGE`] or infinite; the message names
-    /// the parameter, the dimension and the value.
-    ///
-    /// ```
-    /// use lwpr::{LwprConfig, Norm, NormKeyword};
-    /// let mut cfg = LwprConfig {
-    ///     norm_in: Norm::Keyword(NormKeyword::Std),
-    ///     ..Default::default()
-    /// };
-    /// cfg.resolve_std(&[2.0, 0.0], &[5.0]).unwrap();
-    /// assert_eq!(cfg.norm_in, Norm::List(vec![2.0, 1.0]));
-    /// assert_eq!(cfg.norm_out, Norm::Scalar(1.0)); // not "std": left as it was
-    /// let err = LwprConfig { norm_out: Norm::Keyword(NormKeyword::Std), ..Default::default() }
-    ///     .resolve_std(&[1.0], &[1e101])
-    ///     .unwrap_err();
-    /// assert!(err.to_string().contains("norm_out[0] = \"std\" = 1e101"));
-    /// ```
-    pub fn resolve_std(&mut self, std_in: &[f64], std_out: &[f64]) -> Result<(), LwprError> {
-        let resolve = |name: &str, what: &str, n: &Norm, s: &[f64]| {
-            if *n != Norm::Keyword(NormKeyword::Std) {
-                return Ok(None);
-            }
-            let hi = crate::error::num(crate::NORM_RANGE.1);
-            let fix = format!("give {name} explicitly or rescale the data");
-            let mut l = Vec::with_capacity(s.len());
-            for (k, &v) in s.iter().enumerate() {
-                if v == f64::INFINITY {
-                    return Err(LwprError::Config(format!(
-                        "{name}[{k}] = \"std\": the standard deviation of {what} {k} is too \
-                         large to compute (inf); {fix}"
-                    )));
-                }
-                if v > crate::NORM_RANGE.1 {
-                    return Err(LwprError::Config(format!(
-                        "{name}[{k}] = \"std\" = {}, the standard deviation of {what} {k}, is \
-                         above {hi}; {fix}",
-                        crate::error::num(v)
-                    )));
-                }
-                l.push(if v > 1e-12 { v } else { 1.0 });
-            }
-            Ok::<_, LwprError>(Some(Norm::List(l)))
-        };
-        // Both first, so that an error leaves the config as it was.
-        let norm_in = resolve("norm_in", "input", &self.norm_in, std_in)?;
-        let norm_out = resolve("norm_out", "output", &self.norm_out, std_out)?;
-        if let Some(n) = norm_in {
-            self.norm_in = n;
-        }
-        if let Some(n) = norm_out {
-            self.norm_out = n;
-        }
-        Ok(())
+/// The range of a `norm_in` or `norm_out` entry, both ends included. Beyond it a model's
+/// quantities in user units — its metrics `D / (norm_in_i·norm_in_j)`, its Jacobians
+/// `slope·norm_out/norm_in`, its centres and predictions — could overflow, or lose their
+/// precision to subnormals.
+pub const NORM_RANGE: (f64, f64) = (1e-100, 1e100);
+
+/// `norm` (the config's `name`, normalising `what`) with `"std"` replaced by the standard
+/// deviations `s` (values ≤ 1e-12, and NaN, become 1); `None` when `norm` is not `"std"`.
+/// Fails, naming the parameter, the dimension and the value, on a deviation above
+/// [`NORM_RANGE`] or infinite.
+pub(crate) fn resolve(
+    name: &str,
+    what: &str,
+    norm: &Norm,
+    s: &[f64],
+) -> Result<Option<Norm>, LwprError> {
+    if *norm != Norm::Keyword(NormKeyword::Std) {
+        return Ok(None);
     }
+    let hi = num(NORM_RANGE.1);
+    let fix = format!("give {name} explicitly or rescale the data");
+    let mut l = Vec::with_capacity(s.len());
+    for (k, &v) in s.iter().enumerate() {
+        if v == f64::INFINITY {
+            return Err(LwprError::Config(format!(
+                "{name}[{k}] = \"std\": the standard deviation of {what} {k} is too \
+                 large to compute (inf); {fix}"
+            )));
+        }
+        if v > NORM_RANGE.1 {
+            return Err(LwprError::Config(format!(
+                "{name}[{k}] = \"std\" = {}, the standard deviation of {what} {k}, is \
+                 above {hi}; {fix}",
+                num(v)
+            )));
+        }
+        l.push(if v > 1e-12 { v } else { 1.0 });
+    }
+    Ok(Some(Norm::List(l)))
 }

@@ -5,45 +5,10 @@
 
 use crate::error::check_vec;
 use crate::model::Lwpr;
-use crate::rf::{Rf, SubModel};
-use crate::scratch::{quad, same_bits};
+use crate::rf::{Activation, Rf, RfEvent, RfId, SubModel};
+use crate::scratch::same_bits;
 use crate::LwprError;
 use nalgebra::DMatrix;
-use serde::{Deserialize, Serialize};
-
-/// A receptive field's stable id: unique within a model, never reused, kept by save/load.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
-pub struct RfId(pub u64);
-
-/// A change of the partition, queued by [`Lwpr::update`]; read with [`Lwpr::drain_events`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-pub enum RfEvent {
-    /// A new RF in sub-model `sub`, possibly copying the metric of RF `copied_from`.
-    Added {
-        /// Sub-model (the output in per-output mode, 0 with shared RFs).
-        sub: usize,
-        /// The new RF.
-        id: RfId,
-        /// The RF whose metric and `β₀` it started from, if any.
-        copied_from: Option<RfId>,
-    },
-    /// An RF was removed from sub-model `sub`.
-    Pruned {
-        /// Sub-model.
-        sub: usize,
-        /// The removed RF.
-        id: RfId,
-    },
-}
-
-/// One RF's activation at an input.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Activation {
-    /// The RF.
-    pub id: RfId,
-    /// `w ∈ (0, 1]`.
-    pub w: f64,
-}
 
 /// The local linear model of one output in one RF:
 /// `ŷ(x) = offset + slope · (x_R − mean)` over the regression dimensions `x_R`.
@@ -224,15 +189,7 @@ impl Lwpr {
             out.extend_from_slice(&ws.act_out);
             return Ok(());
         }
-        #[cfg(target_arch = "x86_64")]
-        if crate::simd::has_avx2() {
-            // SAFETY: the CPU supports AVX2 (checked at run time).
-            unsafe { self.activations_avx2(sub, x, cutoff, out) };
-        } else {
-            self.activations_dims(sub, x, cutoff, out);
-        }
-        #[cfg(not(target_arch = "x86_64"))]
-        self.activations_dims(sub, x, cutoff, out);
+        crate::fast::activations(&self.p, &self.subs[sub], &mut self.ws, x, cutoff, out);
         // Kept for the next query unless that would allocate (the buffer grows with the model).
         let ws = &mut self.ws;
         ws.act_cache = None;
@@ -243,58 +200,5 @@ impl Lwpr {
             ws.act_cache = Some(key);
         }
         Ok(())
-    }
-
-    /// [`Lwpr::activations`] compiled with AVX2 (same results, see `crate::simd`).
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    unsafe fn activations_avx2(
-        &mut self,
-        sub: usize,
-        x: &[f64],
-        cutoff: f64,
-        out: &mut Vec<Activation>,
-    ) {
-        self.activations_dims(sub, x, cutoff, out)
-    }
-
-    /// Kernel spaces of the learned controllers' forward models get a copy with the dimension
-    /// as a constant (as the update does).
-    #[inline(always)]
-    fn activations_dims(&mut self, sub: usize, x: &[f64], cutoff: f64, out: &mut Vec<Activation>) {
-        match self.p.nk() {
-            14 => self.activations_core::<14>(sub, x, cutoff, out),
-            6 => self.activations_core::<6>(sub, x, cutoff, out),
-            _ => self.activations_core::<0>(sub, x, cutoff, out),
-        }
-    }
-
-    /// The activation pass; `NK > 0` fixes the kernel dimension (0: taken from the model).
-    #[inline(always)]
-    fn activations_core<const NK: usize>(
-        &mut self,
-        sub: usize,
-        x: &[f64],
-        cutoff: f64,
-        out: &mut Vec<Activation>,
-    ) {
-        let Lwpr { p, subs, ws, .. } = self;
-        ws.load_x(p, x);
-        let s = &subs[sub];
-        let (ml, diag) = (p.mlen(), p.cfg.diag_only);
-        let nk = if NK > 0 { NK } else { p.nk() };
-        let kern = if diag { &s.ds } else { &s.ms };
-        let qb = p.q_bound(cutoff);
-        out.clear();
-        let rf_chunks = s.centers.chunks_exact(nk).zip(kern.chunks_exact(ml));
-        for (rf, (c, md)) in s.rfs.iter().zip(rf_chunks) {
-            let q = quad(diag, c, md, &ws.xk[..nk], &mut ws.met.dx, qb);
-            if q < qb {
-                let w = p.kernel(q).0;
-                if w > cutoff {
-                    out.push(Activation { id: RfId(rf.id), w });
-                }
-            }
-        }
     }
 }

@@ -1,65 +1,161 @@
-//! Incremental partial least squares inside one receptive field: steps (a) and (b) of an update
-//! (`shared/LWPR.md`), projections for prediction, and the local slope.
+//! The incremental partial least squares (PLS) regression of one output inside one receptive
+//! field: its state ([`Pls`]), a fresh model, and what a prediction computes from it (the
+//! projections of an input and the local slope). The update's PLS steps are in
+//! `update/regression.rs`.
 
-use crate::rf::{Pls, Rf};
+use crate::numeric::dot;
+use crate::params::Params;
+use serde::{Deserialize, Serialize};
 
-/// Scratch for the PLS step, sized once for `nr` regression dimensions.
-#[derive(Clone, Debug, Default)]
-pub(crate) struct PlsScratch {
-    /// Input minus the RF's weighted mean.
-    pub xmz: Vec<f64>,
-    /// Residual inputs `xres_j`, `nr × nr`.
-    pub xres: Vec<f64>,
-    /// Projections `s_j` (after an update: with the new `u`, `p`).
-    pub s: Vec<f64>,
-    /// Leave-one-out residuals `e_cv,j`.
-    pub e_cv: Vec<f64>,
-    /// Working residual for projections.
-    pub xu: Vec<f64>,
-    /// `s_j / SSs2_j` (metric step).
-    pub ps: Vec<f64>,
-    /// Outputs whose metric terms the leverage guard skipped ([`crate::metric::output_terms`])
-    /// in the current sub-model update.
-    pub skipped: usize,
+/// Directions reserved up front per PLS model, so that growth up to this many never allocates.
+const RESERVE_DIRS: usize = 6;
+
+/// Incremental PLS regression of one output inside one RF.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub(crate) struct Pls {
+    /// Number of projection directions `R`.
+    pub n_reg: usize,
+    /// Weighted mean of the output, `β₀`.
+    pub beta0: f64,
+    /// Projection directions `u_j` (direction-major, `R × nr`).
+    pub u: Vec<f64>,
+    /// Input loadings `p_j` (`R × nr`).
+    pub p: Vec<f64>,
+    /// `SXresYres_j` (`R × nr`).
+    pub sxy: Vec<f64>,
+    /// `SSXres_j` (`R × nr`).
+    pub ssx: Vec<f64>,
+    /// Regression coefficients `β_j`.
+    pub beta: Vec<f64>,
+    /// `SSs2_j`.
+    pub ss_s2: Vec<f64>,
+    /// `SSYres_j`.
+    pub ss_yres: Vec<f64>,
+    /// `sum_w_j`.
+    pub sum_w: Vec<f64>,
+    /// `n_data_j`.
+    pub n_data: Vec<f64>,
+    /// Forgetting factor `λ_j`.
+    pub lambda: Vec<f64>,
+    /// `sum_e_cv2_j`.
+    pub sum_e_cv2: Vec<f64>,
+    /// Metric-gradient memory trace `H_j`.
+    pub h_tr: Vec<f64>,
+    /// Metric-gradient memory trace `r_j`.
+    pub r_tr: Vec<f64>,
+    /// `SSp`.
+    pub ssp: f64,
+    /// `sum_e2`.
+    pub sum_e2: f64,
+    /// The local model's slope `∂ŷ/∂x_R` (normalised units), recomputed from the PLS state
+    /// when a prediction needs it (see `slope_stale`); always current in the saved format.
+    pub slope: Vec<f64>,
+    /// The model changed since `slope` was computed: an update only sets this flag, and the
+    /// slope is recomputed (by [`update_slope`], the same arithmetic on the same
+    /// state, so the same bits) by the next prediction that uses it or by serialisation.
+    #[serde(skip)]
+    pub slope_stale: bool,
 }
 
-impl PlsScratch {
-    /// Buffers for `nr` regression dimensions.
-    pub fn new(nr: usize) -> PlsScratch {
-        PlsScratch {
-            xmz: vec![0.0; nr],
-            xres: vec![0.0; nr * nr],
-            s: vec![0.0; nr],
-            e_cv: vec![0.0; nr],
-            xu: vec![0.0; nr],
-            skipped: 0,
-            ps: vec![0.0; nr],
+impl Pls {
+    /// Whether the parts a prediction reads — `β₀`, `β`, `u`, `p` — are all finite (what
+    /// loading a saved model checks; the update's guard sums the same values as its PLS step
+    /// computes them, `pls::RegOut::chk`).
+    #[inline(always)]
+    pub fn predictors_finite(&self) -> bool {
+        // Branch-free (an integer OR over the exponent tests, which vectorises): the update
+        // calls this for every RF it touches.
+        const EXP: u64 = 0x7ff0_0000_0000_0000;
+        let bad = |v: &[f64]| {
+            v.iter()
+                .fold(0u64, |a, x| a | ((x.to_bits() & EXP == EXP) as u64))
+        };
+        (bad(&self.u) | bad(&self.p) | bad(&self.beta) | bad(&[self.beta0])) == 0
+    }
+
+    /// Recomputes `slope` if it is stale.
+    #[inline(always)]
+    pub fn refresh_slope(&mut self, nr: usize) {
+        if self.slope_stale {
+            update_slope(self, nr);
+            self.slope_stale = false;
         }
     }
 }
 
-pub(crate) use crate::simd::dot;
+/// Serialises the PLS models of an RF with current slopes (stale ones recomputed on a copy).
+pub(crate) fn serialize_outs<S: serde::Serializer>(
+    outs: &Vec<Pls>,
+    s: S,
+) -> Result<S::Ok, S::Error> {
+    if !outs.iter().any(|o| o.slope_stale) {
+        return outs.serialize(s);
+    }
+    let mut fresh = outs.clone();
+    for o in &mut fresh {
+        let nr = o.slope.len();
+        o.refresh_slope(nr);
+    }
+    fresh.serialize(s)
+}
 
-/// Step (a) for the inputs: with `ω = sum_w[0]·λ[0]` (passed in, shared by all outputs),
-/// updates the RF's weighted mean and variance and writes `x̃ = x − mean_x` into `xmz`.
-#[inline(always)]
-pub(crate) fn update_input_means(
-    nr: usize,
-    rf: &mut Rf,
-    omega: f64,
-    x: &[f64],
-    w: f64,
-    xmz: &mut [f64],
-) {
-    let inv = 1.0 / (omega + w);
-    let (x, xmz) = (&x[..nr], &mut xmz[..nr]);
-    let (mean_x, var_x) = (&mut rf.mean_x[..nr], &mut rf.var_x[..nr]);
-    for i in 0..nr {
-        let m = (omega * mean_x[i] + w * x[i]) * inv;
-        mean_x[i] = m;
-        let d = x[i] - m;
-        xmz[i] = d;
-        var_x[i] = (omega * var_x[i] + w * d * d) * inv;
+impl Pls {
+    /// A fresh model with `n_reg` directions `u_j = p_j = e_j`.
+    pub fn new(p: &Params, n_reg: usize, beta0: f64) -> Pls {
+        let nr = p.nr();
+        let cap = n_reg.max(RESERVE_DIRS.min(nr));
+        let vr = || {
+            let mut v = Vec::with_capacity(cap);
+            v.resize(n_reg, 0.0);
+            v
+        };
+        let vm = || {
+            let mut v = Vec::with_capacity(cap * nr);
+            v.resize(n_reg * nr, 0.0);
+            v
+        };
+        let mut s = Pls {
+            n_reg,
+            beta0,
+            u: vm(),
+            p: vm(),
+            sxy: vm(),
+            ssx: vm(),
+            beta: vr(),
+            ss_s2: vr(),
+            ss_yres: vr(),
+            sum_w: vr(),
+            n_data: vr(),
+            lambda: vr(),
+            sum_e_cv2: vr(),
+            h_tr: vr(),
+            r_tr: vr(),
+            ssp: 0.0,
+            sum_e2: 0.0,
+            slope: vec![0.0; nr],
+            slope_stale: false,
+        };
+        for j in 0..n_reg {
+            s.u[j * nr + j] = 1.0;
+            s.p[j * nr + j] = 1.0;
+            s.ss_s2[j] = p.cfg.init_s2;
+            s.sum_w[j] = 1e-10;
+            s.n_data[j] = 1e-10;
+            s.lambda[j] = p.cfg.init_lambda;
+        }
+        s
+    }
+
+    /// Number of directions used for prediction: all but the last while its
+    /// `n_data ≤ 2·nr` (so 0 when `R = 1` and that direction is not yet trusted).
+    #[inline]
+    pub fn n_pred(&self, nr: usize) -> usize {
+        let r = self.n_reg;
+        if self.n_data[r - 1] > 2.0 * nr as f64 {
+            r
+        } else {
+            r - 1
+        }
     }
 }
 
@@ -85,160 +181,6 @@ pub(crate) fn project(
                 *a -= pv * sj;
             }
         }
-    }
-}
-
-/// Outcome of [`update_regression`] for one output.
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct RegOut {
-    /// The RF's prediction `β₀ + Σ β_j s_j` (normalised), before this update's forgetting step.
-    pub yp: f64,
-    /// Leave-one-out residual of the last trusted direction.
-    pub e_cv: f64,
-    /// Residual of the updated model.
-    pub e: f64,
-    /// The sum of every `β_j`, `p_j` and `u_j` the step computed: finite iff they all are (a
-    /// numerical guard: `β_j` and `p_j` divide by `SSs2_j`, which fast forgetting can let
-    /// decay to nothing; a finite sum that overflows is flagged too, such an RF has diverged).
-    pub chk: f64,
-}
-
-/// Steps (a, output part) and (b): updates `β₀` with `(ω, inv)` from the input means, then one
-/// weighted PLS update with sample `(x̃, y)` and weight `w`. `ws.s` holds the new projections.
-/// (The PLS state is sliced to its `R` directions once, so the loops need no bounds checks.)
-#[inline(always)]
-pub(crate) fn update_regression<const R: usize>(
-    pls: &mut Pls,
-    nr: usize,
-    omega: f64,
-    y: f64,
-    w: f64,
-    ws: &mut PlsScratch,
-) -> RegOut {
-    pls.beta0 = (omega * pls.beta0 + w * y) / (omega + w);
-    let ymz = y - pls.beta0;
-    let r = if R > 0 { R } else { pls.n_reg };
-    let nn = r * nr;
-    let PlsScratch {
-        xmz,
-        xres,
-        s,
-        e_cv,
-        xu,
-        ..
-    } = ws;
-    let (xmz, xres, s, e_cv) = (&xmz[..nr], &mut xres[..nn], &mut s[..r], &mut e_cv[..r]);
-    let Pls {
-        u,
-        p,
-        sxy,
-        ssx,
-        beta,
-        ss_s2,
-        ss_yres,
-        sum_w,
-        n_data,
-        lambda,
-        sum_e_cv2,
-        ssp,
-        sum_e2,
-        ..
-    } = &mut *pls;
-    let (u, p, sxy, ssx) = (&mut u[..nn], &mut p[..nn], &mut sxy[..nn], &mut ssx[..nn]);
-    let (beta, ss_s2, ss_yres) = (&mut beta[..r], &mut ss_s2[..r], &mut ss_yres[..r]);
-    let (sum_w, n_data, lambda) = (&mut sum_w[..r], &n_data[..r], &lambda[..r]);
-    let sum_e_cv2 = &mut sum_e_cv2[..r];
-    // Projection with the old directions, keeping every residual.
-    xres[..nr].copy_from_slice(xmz);
-    for j in 0..r {
-        let (done, rest) = xres.split_at_mut((j + 1) * nr);
-        let xj = &done[j * nr..];
-        let sj = dot(&u[j * nr..(j + 1) * nr], xj);
-        s[j] = sj;
-        if j + 1 < r {
-            let (pj, rest) = (&p[j * nr..(j + 1) * nr], &mut rest[..nr]);
-            for i in 0..nr {
-                rest[i] = xj[i] - pj[i] * sj;
-            }
-        }
-    }
-    let mut yres = 0.0;
-    for j in 0..r {
-        yres += beta[j] * s[j];
-        sum_w[j] = sum_w[j] * lambda[j] + w;
-        e_cv[j] = ymz - yres;
-    }
-    let mut ws2 = 0.0;
-    // Numerical guard (`RegOut::chk`).
-    let mut chk = 0.0;
-    for j in 0..r {
-        let lam = lambda[j];
-        let lam_slow = 0.9 + 0.1 * lam;
-        let t = if j == 0 { ymz } else { e_cv[j - 1] };
-        let wt = w * t;
-        let wsj = w * s[j];
-        let xj = &xres[j * nr..(j + 1) * nr];
-        let sxy = &mut sxy[j * nr..(j + 1) * nr];
-        let mut norm2 = 0.0;
-        for i in 0..nr {
-            let v = sxy[i] * lam_slow + wt * xj[i];
-            sxy[i] = v;
-            norm2 += v * v;
-        }
-        if norm2 > 1e-24 {
-            let inv = 1.0 / norm2.sqrt();
-            for (u, &v) in u[j * nr..(j + 1) * nr].iter_mut().zip(sxy.iter()) {
-                *u = v * inv;
-                chk += *u;
-            }
-        }
-        ss_s2[j] = lam * ss_s2[j] + s[j] * wsj;
-        ss_yres[j] = lam * ss_yres[j] + t * wsj;
-        let inv_s2 = 1.0 / ss_s2[j];
-        beta[j] = ss_yres[j] * inv_s2;
-        chk += beta[j];
-        let ssx = &mut ssx[j * nr..(j + 1) * nr];
-        let pj = &mut p[j * nr..(j + 1) * nr];
-        for i in 0..nr {
-            let v = lam * ssx[i] + wsj * xj[i];
-            ssx[i] = v;
-            pj[i] = v * inv_s2;
-            chk += pj[i];
-        }
-        ws2 += wsj * wsj * inv_s2;
-    }
-    *ssp = lambda[r - 1] * *ssp + ws2;
-    // New projections.
-    project(u, p, nr, r, xmz, xu, s);
-    // `Pls::n_pred`.
-    let np = if n_data[r - 1] > 2.0 * nr as f64 {
-        r
-    } else {
-        r - 1
-    };
-    let ypred: f64 = (0..np).map(|j| beta[j] * s[j]).sum();
-    let e_cv_r = if np == 0 { ymz } else { e_cv[np - 1] };
-    let e = ymz - ypred;
-    if n_data[0] * (1.0 - lambda[0]) > 0.1 {
-        *sum_e2 = *sum_e2 * lambda[r - 1] + w * e * e;
-        for j in 0..r {
-            sum_e_cv2[j] = sum_e_cv2[j] * lambda[j] + w * e_cv[j] * e_cv[j];
-        }
-    }
-    RegOut {
-        yp: ypred + pls.beta0,
-        e_cv: e_cv_r,
-        e,
-        chk,
-    }
-}
-
-/// Step (f): `n_data_j ← λ_j n_data_j + 1`, then the forgetting schedule.
-#[inline(always)]
-pub(crate) fn forget(pls: &mut Pls, tau: f64, final_lambda: f64) {
-    for j in 0..pls.n_reg {
-        pls.n_data[j] = pls.n_data[j] * pls.lambda[j] + 1.0;
-        pls.lambda[j] = tau * pls.lambda[j] + final_lambda * (1.0 - tau);
     }
 }
 

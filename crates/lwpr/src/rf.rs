@@ -1,210 +1,46 @@
-//! Receptive fields (RFs) and the sub-model that holds them.
+//! Receptive fields (RFs): their stable ids and the events that announce them, and the
+//! sub-model that holds a list of them.
 //!
 //! All RF state lives in normalised units. Centres and metrics are stored contiguously in the
 //! [`SubModel`] (structure of arrays) so the activation pass over all RFs streams through memory;
 //! everything else an RF owns is in [`Rf`] and, per output it regresses, in [`Pls`].
 
 use crate::params::Params;
+use crate::pls::Pls;
 use serde::{Deserialize, Serialize};
 
-/// Directions reserved up front per PLS model, so that growth up to this many never allocates.
-const RESERVE_DIRS: usize = 6;
+/// A receptive field's stable id: unique within a model, never reused, kept by save/load.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+pub struct RfId(pub u64);
 
-/// Incremental PLS regression of one output inside one RF.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub(crate) struct Pls {
-    /// Number of projection directions `R`.
-    pub n_reg: usize,
-    /// Weighted mean of the output, `β₀`.
-    pub beta0: f64,
-    /// Projection directions `u_j` (direction-major, `R × nr`).
-    pub u: Vec<f64>,
-    /// Input loadings `p_j` (`R × nr`).
-    pub p: Vec<f64>,
-    /// `SXresYres_j` (`R × nr`).
-    pub sxy: Vec<f64>,
-    /// `SSXres_j` (`R × nr`).
-    pub ssx: Vec<f64>,
-    /// Regression coefficients `β_j`.
-    pub beta: Vec<f64>,
-    /// `SSs2_j`.
-    pub ss_s2: Vec<f64>,
-    /// `SSYres_j`.
-    pub ss_yres: Vec<f64>,
-    /// `sum_w_j`.
-    pub sum_w: Vec<f64>,
-    /// `n_data_j`.
-    pub n_data: Vec<f64>,
-    /// Forgetting factor `λ_j`.
-    pub lambda: Vec<f64>,
-    /// `sum_e_cv2_j`.
-    pub sum_e_cv2: Vec<f64>,
-    /// Metric-gradient memory trace `H_j`.
-    pub h_tr: Vec<f64>,
-    /// Metric-gradient memory trace `r_j`.
-    pub r_tr: Vec<f64>,
-    /// `SSp`.
-    pub ssp: f64,
-    /// `sum_e2`.
-    pub sum_e2: f64,
-    /// The local model's slope `∂ŷ/∂x_R` (normalised units), recomputed from the PLS state
-    /// when a prediction needs it (see `slope_stale`); always current in the saved format.
-    pub slope: Vec<f64>,
-    /// The model changed since `slope` was computed: an update only sets this flag, and the
-    /// slope is recomputed (by [`crate::pls::update_slope`], the same arithmetic on the same
-    /// state, so the same bits) by the next prediction that uses it or by serialisation.
-    #[serde(skip)]
-    pub slope_stale: bool,
+/// A change of the partition, queued by [`Lwpr::update`]; read with [`Lwpr::drain_events`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum RfEvent {
+    /// A new RF in sub-model `sub`, possibly copying the metric of RF `copied_from`.
+    Added {
+        /// Sub-model (the output in per-output mode, 0 with shared RFs).
+        sub: usize,
+        /// The new RF.
+        id: RfId,
+        /// The RF whose metric and `β₀` it started from, if any.
+        copied_from: Option<RfId>,
+    },
+    /// An RF was removed from sub-model `sub`.
+    Pruned {
+        /// Sub-model.
+        sub: usize,
+        /// The removed RF.
+        id: RfId,
+    },
 }
 
-impl Pls {
-    /// Whether the parts a prediction reads — `β₀`, `β`, `u`, `p` — are all finite (what
-    /// loading a saved model checks; the update's guard sums the same values as its PLS step
-    /// computes them, `pls::RegOut::chk`).
-    #[inline(always)]
-    pub fn predictors_finite(&self) -> bool {
-        // Branch-free (an integer OR over the exponent tests, which vectorises): the update
-        // calls this for every RF it touches.
-        const EXP: u64 = 0x7ff0_0000_0000_0000;
-        let bad = |v: &[f64]| {
-            v.iter()
-                .fold(0u64, |a, x| a | ((x.to_bits() & EXP == EXP) as u64))
-        };
-        (bad(&self.u) | bad(&self.p) | bad(&self.beta) | bad(&[self.beta0])) == 0
-    }
-
-    /// Recomputes `slope` if it is stale.
-    #[inline(always)]
-    pub fn refresh_slope(&mut self, nr: usize) {
-        if self.slope_stale {
-            crate::pls::update_slope(self, nr);
-            self.slope_stale = false;
-        }
-    }
-}
-
-/// Serialises the PLS models of an RF with current slopes (stale ones recomputed on a copy).
-fn serialize_outs<S: serde::Serializer>(outs: &Vec<Pls>, s: S) -> Result<S::Ok, S::Error> {
-    if !outs.iter().any(|o| o.slope_stale) {
-        return outs.serialize(s);
-    }
-    let mut fresh = outs.clone();
-    for o in &mut fresh {
-        let nr = o.slope.len();
-        o.refresh_slope(nr);
-    }
-    fresh.serialize(s)
-}
-
-impl Pls {
-    /// A fresh model with `n_reg` directions `u_j = p_j = e_j`.
-    pub fn new(p: &Params, n_reg: usize, beta0: f64) -> Pls {
-        let nr = p.nr();
-        let cap = n_reg.max(RESERVE_DIRS.min(nr));
-        let vr = || {
-            let mut v = Vec::with_capacity(cap);
-            v.resize(n_reg, 0.0);
-            v
-        };
-        let vm = || {
-            let mut v = Vec::with_capacity(cap * nr);
-            v.resize(n_reg * nr, 0.0);
-            v
-        };
-        let mut s = Pls {
-            n_reg,
-            beta0,
-            u: vm(),
-            p: vm(),
-            sxy: vm(),
-            ssx: vm(),
-            beta: vr(),
-            ss_s2: vr(),
-            ss_yres: vr(),
-            sum_w: vr(),
-            n_data: vr(),
-            lambda: vr(),
-            sum_e_cv2: vr(),
-            h_tr: vr(),
-            r_tr: vr(),
-            ssp: 0.0,
-            sum_e2: 0.0,
-            slope: vec![0.0; nr],
-            slope_stale: false,
-        };
-        for j in 0..n_reg {
-            s.u[j * nr + j] = 1.0;
-            s.p[j * nr + j] = 1.0;
-            s.ss_s2[j] = p.cfg.init_s2;
-            s.sum_w[j] = 1e-10;
-            s.n_data[j] = 1e-10;
-            s.lambda[j] = p.cfg.init_lambda;
-        }
-        s
-    }
-
-    /// PLS growth test and step (e): adds direction `R+1` when the last direction explains
-    /// enough more than the one before. Returns whether a direction was added.
-    /// (The test is inlined into the update; the growth itself is a separate, cold function.)
-    #[inline(always)]
-    pub fn check_grow(&mut self, p: &Params) -> bool {
-        let r = self.n_reg;
-        let nr = p.nr();
-        if r >= nr || r < 2 {
-            return false;
-        }
-        let mse_r = self.sum_e_cv2[r - 1] / self.sum_w[r - 1] + 1e-10;
-        let mse_r1 = self.sum_e_cv2[r - 2] / self.sum_w[r - 2] + 1e-10;
-        if mse_r < p.cfg.add_threshold * mse_r1
-            && self.n_data[r - 1] > 0.99 * self.n_data[0]
-            && self.n_data[r - 1] * (1.0 - self.lambda[r - 1]) > 0.5
-        {
-            self.grow(p);
-            true
-        } else {
-            false
-        }
-    }
-
-    /// Adds direction `R+1` (`u = p = e_{R+1}`).
-    #[cold]
-    #[inline(never)]
-    fn grow(&mut self, p: &Params) {
-        let r = self.n_reg;
-        let nr = p.nr();
-        for v in [&mut self.u, &mut self.p, &mut self.sxy, &mut self.ssx] {
-            v.resize((r + 1) * nr, 0.0);
-        }
-        self.u[r * nr + r] = 1.0;
-        self.p[r * nr + r] = 1.0;
-        for v in [
-            &mut self.beta,
-            &mut self.ss_yres,
-            &mut self.n_data,
-            &mut self.sum_e_cv2,
-            &mut self.h_tr,
-            &mut self.r_tr,
-        ] {
-            v.push(0.0);
-        }
-        self.ss_s2.push(p.cfg.init_s2);
-        self.sum_w.push(1e-10);
-        self.lambda.push(p.cfg.init_lambda);
-        self.n_reg = r + 1;
-        self.ssp = 0.0;
-    }
-
-    /// Number of directions used for prediction: all but the last while its
-    /// `n_data ≤ 2·nr` (so 0 when `R = 1` and that direction is not yet trusted).
-    #[inline]
-    pub fn n_pred(&self, nr: usize) -> usize {
-        let r = self.n_reg;
-        if self.n_data[r - 1] > 2.0 * nr as f64 {
-            r
-        } else {
-            r - 1
-        }
-    }
+/// One RF's activation at an input.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Activation {
+    /// The RF.
+    pub id: RfId,
+    /// `w ∈ (0, 1]`.
+    pub w: f64,
 }
 
 /// One receptive field: everything but its centre and metric (see [`SubModel`]).
@@ -225,7 +61,7 @@ pub(crate) struct Rf {
     /// `n_data[0] > 2·nr` seen at an update.
     pub trustworthy: bool,
     /// One PLS model per output this RF regresses.
-    #[serde(serialize_with = "serialize_outs")]
+    #[serde(serialize_with = "crate::pls::serialize_outs")]
     pub outs: Vec<Pls>,
 }
 

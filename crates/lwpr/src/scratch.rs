@@ -1,8 +1,8 @@
 //! Preallocated buffers for the hot paths (update, predict), sized once per model.
 
-use crate::metric::MetricScratch;
 use crate::params::Params;
-use crate::pls::PlsScratch;
+use crate::rf::Activation;
+use crate::update::{MetricScratch, PlsScratch};
 
 /// Work buffers; never serialised, rebuilt by [`Scratch::new`] after loading.
 #[derive(Clone, Debug, Default)]
@@ -45,10 +45,10 @@ pub(crate) struct Scratch {
     pub support: Vec<f64>,
     /// Prediction made during the last update (normalised until the end of the update).
     pub last_yp: Vec<f64>,
-    /// The last prediction's key (kind, strict) and outcome (`Err(output)`: no RF active for
-    /// that output), valid while the model is unchanged; its results are in `y`, `conf`, `jac`
+    /// The last prediction's key (kind, strict) and outcome (`Ok(sum_w)`, the support;
+    /// `Err(output)`: no RF active for that output), valid while the model is unchanged; its results are in `y`, `conf`, `jac`
     /// and `support`, its input in `pred_x`. Cleared by every update.
-    pub pred_cache: Option<((u8, bool), Result<crate::Support, usize>)>,
+    pub pred_cache: Option<((u8, bool), Result<f64, usize>)>,
     /// Input of the cached prediction.
     pub pred_x: Vec<f64>,
     /// The last activation query's (sub-model, cutoff bits), valid while the model is
@@ -57,7 +57,7 @@ pub(crate) struct Scratch {
     /// Input of the cached activation query.
     pub act_x: Vec<f64>,
     /// Result of the cached activation query.
-    pub act_out: Vec<crate::Activation>,
+    pub act_out: Vec<Activation>,
     /// `q_bound(W_UPDATE)` and `q_bound(cutoff)` (a logarithm each, computed once).
     pub qb_update: f64,
     /// See `qb_update`.
@@ -76,7 +76,7 @@ impl Scratch {
             xr: vec![0.0; nr],
             yn: vec![0.0; n_out],
             pls: PlsScratch::new(nr),
-            met: MetricScratch::new(nk, p.mlen()),
+            met: MetricScratch::new(nk, p.mlen(), crate::fast::wide::scratch_len(nk, p.mlen())),
             active: Vec::with_capacity(n_rf.max(64)),
             diverged: Vec::with_capacity(n_rf.max(64)),
             yacc: vec![0.0; n_out],
@@ -132,116 +132,4 @@ impl Scratch {
 #[inline]
 pub(crate) fn same_bits(a: &[f64], b: &[f64]) -> bool {
     a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
-}
-
-/// `q = (x − c)ᵀ D (x − c)`: from the diagonal of `D`, or as `‖M (x − c)‖²` with the
-/// upper-triangular `M` (row-major); `dx` is scratch of length `x.len()`.
-///
-/// The sum runs over non-negative terms, so its partial values never decrease (also in
-/// floating point): once a partial sum reaches `bound`, the RF cannot matter to the caller and
-/// that partial sum (`≥ bound`) is returned early. Below `bound` the result is the full sum,
-/// bit for bit the same as without a bound (same terms, same order). Pass `f64::INFINITY` for
-/// the exact value.
-#[inline(always)]
-pub(crate) fn quad(
-    diag: bool,
-    c: &[f64],
-    md: &[f64],
-    x: &[f64],
-    dx: &mut [f64],
-    bound: f64,
-) -> f64 {
-    if diag {
-        quad_diag(c, md, x, bound)
-    } else {
-        match x.len() {
-            1 => quad_full_n::<1>(c, md, x, bound),
-            2 => quad_full_n::<2>(c, md, x, bound),
-            3 => quad_full_n::<3>(c, md, x, bound),
-            4 => quad_full_n::<4>(c, md, x, bound),
-            _ => quad_full(c, md, x, dx, bound),
-        }
-    }
-}
-
-/// Diagonal metric: `Σ_i D_i (x_i − c_i)²`, the terms of whole groups of 8 and then of one
-/// group of 4 in four interleaved partial sums (lane `i mod 4`), the last `< 4` terms in order,
-/// checking the bound after every 8 terms. Each lane only grows, and so does their
-/// combination, so a partial value never exceeds the full sum.
-#[inline(always)]
-fn quad_diag(c: &[f64], d: &[f64], x: &[f64], bound: f64) -> f64 {
-    let n = x.len();
-    let (c, d) = (&c[..n], &d[..n]);
-    let mut l = [0.0; 4];
-    let mut i = 0;
-    while i + 8 <= n {
-        let (xs, cs, ds) = (&x[i..i + 8], &c[i..i + 8], &d[i..i + 8]);
-        for j in 0..8 {
-            let t = xs[j] - cs[j];
-            l[j % 4] += ds[j] * t * t;
-        }
-        let q = (l[0] + l[1]) + (l[2] + l[3]);
-        if q >= bound {
-            return q;
-        }
-        i += 8;
-    }
-    if i + 4 <= n {
-        let (xs, cs, ds) = (&x[i..i + 4], &c[i..i + 4], &d[i..i + 4]);
-        for j in 0..4 {
-            let t = xs[j] - cs[j];
-            l[j] += ds[j] * t * t;
-        }
-        i += 4;
-    }
-    let mut q = (l[0] + l[1]) + (l[2] + l[3]);
-    for k in i..n {
-        let t = x[k] - c[k];
-        q += d[k] * t * t;
-    }
-    q
-}
-
-/// Full metric, `N` known at compile time (small input spaces). Up to 2-D the bound is not
-/// checked: the full sum costs less than a mispredicted branch (and a value `≥ bound` is
-/// never used beyond the test against it).
-#[inline(always)]
-pub(crate) fn quad_full_n<const N: usize>(c: &[f64], m: &[f64], x: &[f64], bound: f64) -> f64 {
-    let (c, m, x) = (&c[..N], &m[..N * N], &x[..N]);
-    let mut dx = [0.0; N];
-    for i in 0..N {
-        dx[i] = x[i] - c[i];
-    }
-    let mut q = 0.0;
-    for n in 0..N {
-        let mut v = 0.0;
-        for i in n..N {
-            v += m[n * N + i] * dx[i];
-        }
-        q += v * v;
-        if N > 2 && q >= bound {
-            return q;
-        }
-    }
-    q
-}
-
-/// Full metric, any size: `Σ_n (Σ_{i≥n} M_ni dx_i)²` (the inner sums by [`crate::simd::dot`]),
-/// checking the bound after each row.
-#[inline(always)]
-fn quad_full(c: &[f64], m: &[f64], x: &[f64], dx: &mut [f64], bound: f64) -> f64 {
-    let nk = x.len();
-    let (c, m, dx) = (&c[..nk], &m[..nk * nk], &mut dx[..nk]);
-    for i in 0..nk {
-        dx[i] = x[i] - c[i];
-    }
-    let mut q = 0.0;
-    for n in 0..nk {
-        let v = crate::simd::dot(&m[n * nk + n..(n + 1) * nk], &dx[n..]);
-        q += v * v;
-        if q >= bound {
-            return q;
-        }
-    }
-    q
 }

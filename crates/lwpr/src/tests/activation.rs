@@ -1,29 +1,23 @@
-//! The 2-D activation pass four RFs at a time (`activation::for_each_q`) against the distance of
-//! one RF (`scratch::quad`), bit for bit, for every count of RFs up to 13 (whole blocks of
+//! The 2-D activation pass four RFs at a time (`fast::plane_quad::for_each_q`) against the
+//! distance of one RF (`distance::quad`), bit for bit, for every count of RFs up to 13 (whole blocks of
 //! four and every remainder), with and without AVX2; and the selection of the RFs to update
-//! and of the two nearest (`activation::Top2`) against a direct computation.
+//! and of the two nearest (`update::activation::Top2`) against a direct computation.
 
-use crate::activation::for_each_q;
-use crate::scratch::quad;
+use crate::distance::quad;
+use crate::fast::plane_quad::for_each_q;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use std::cell::Cell;
 
-thread_local! {
-    /// Blocks of four RFs that `for_each_q` computed on AVX2.
-    pub(crate) static BLOCKS: Cell<u64> = const { Cell::new(0) };
-}
-
-/// `(i, q)` in the order `for_each_q` visits them.
-fn visits<const AVX: bool>(centers: &[f64], ms: &[f64], x: &[f64]) -> Vec<(usize, u64)> {
+/// `(i, q)` in the order `for_each_q` visits them, and the RFs it computed four at a time.
+fn visits<const AVX: bool>(centers: &[f64], ms: &[f64], x: &[f64]) -> (Vec<(usize, u64)>, usize) {
     let mut out = Vec::new();
-    for_each_q::<AVX>(centers, ms, x, |i, q| out.push((i, q.to_bits())));
-    out
+    let blocks = for_each_q::<AVX>(centers, ms, x, |i, q| out.push((i, q.to_bits())));
+    (out, blocks)
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-unsafe fn visits_avx2(centers: &[f64], ms: &[f64], x: &[f64]) -> Vec<(usize, u64)> {
+unsafe fn visits_avx2(centers: &[f64], ms: &[f64], x: &[f64]) -> (Vec<(usize, u64)>, usize) {
     visits::<true>(centers, ms, x)
 }
 
@@ -58,20 +52,22 @@ fn four_at_a_time_gives_the_bits_of_one_at_a_time() {
                 (i, quad(false, c, m, &x, &mut dx, f64::INFINITY).to_bits())
             })
             .collect();
-        assert_eq!(visits::<false>(&centers, &ms, &x), want, "scalar, {n} RFs");
+        assert_eq!(
+            visits::<false>(&centers, &ms, &x),
+            (want.clone(), 0),
+            "scalar, {n} RFs"
+        );
         #[cfg(target_arch = "x86_64")]
-        if crate::simd::has_avx2() {
-            let before = BLOCKS.with(|b| b.get());
+        if crate::fast::has_avx2() {
             // SAFETY: the CPU supports AVX2 (checked above).
-            let got = unsafe { visits_avx2(&centers, &ms, &x) };
+            let (got, blocks) = unsafe { visits_avx2(&centers, &ms, &x) };
             assert_eq!(got, want, "AVX2, {n} RFs");
-            let blocks = BLOCKS.with(|b| b.get()) - before;
-            assert_eq!(blocks, (n / 4) as u64, "AVX2 blocks for {n} RFs");
+            assert_eq!(blocks, 4 * (n / 4), "RFs four at a time of {n}");
             checked_avx = true;
         }
     }
     #[cfg(target_arch = "x86_64")]
-    if crate::simd::has_avx2() {
+    if crate::fast::has_avx2() {
         assert!(checked_avx);
     }
 }
@@ -82,8 +78,8 @@ fn four_at_a_time_gives_the_bits_of_one_at_a_time() {
 /// `∞` and NaN (never nearest).
 #[test]
 fn top2_keeps_the_two_nearest_and_the_active_rfs() {
-    use crate::activation::Top2;
     use crate::params::W_UPDATE;
+    use crate::update::activation::Top2;
     let p = crate::config::LwprConfig::default().validate(2, 1).unwrap();
     let qb = p.q_bound(W_UPDATE);
     let pool = [

@@ -1,8 +1,9 @@
 //! Every derivative used by the metric update against central finite differences.
 
 use crate::config::{Kernel, LwprConfig, MetricInit};
-use crate::metric::{derivatives, MetricScratch};
 use crate::params::Params;
+use crate::update::metric::MetricScratch;
+use crate::update::metric_derivatives::derivatives;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -69,7 +70,7 @@ fn check(kernel: Kernel, diag: bool, seed: u64) {
     let pen = 0.37; // large, so the penalty terms are well above rounding
     let q = q_of(diag, nk, &m, &dx);
     let (_w, dwdq, ddwdqdq) = p.kernel(q);
-    let mut ws = MetricScratch::new(nk, ml);
+    let mut ws = MetricScratch::new(nk, ml, 0);
     ws.dx.copy_from_slice(&dx);
     let d = d_of(diag, nk, &m);
     derivatives(nk, diag, true, &m, &d, dwdq, ddwdqdq, pen, &mut ws);
@@ -135,8 +136,8 @@ fn kernel_derivatives_match_finite_differences() {
 /// `J1(w) = (E₀ + w e_cv²) / (W₀ + w)` at the current sample.
 #[test]
 fn loo_cost_derivative_matches_finite_differences() {
-    use crate::metric::{output_terms, MetricAcc};
-    use crate::rf::Pls;
+    use crate::pls::Pls;
+    use crate::update::metric::{output_terms, MetricAcc};
     let p = params(Kernel::Gaussian, true);
     let (e0, w0, w, ecv) = (0.8, 20.0, 0.6, 0.5);
     let mut pls = Pls::new(&p, 1, 0.0);

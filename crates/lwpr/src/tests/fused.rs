@@ -1,10 +1,13 @@
-//! The fused full-metric step (`metric_full::full_step`) against the separate derivatives and
-//! step (`metric::derivatives`, `metric::step`): bit-identical results.
+//! The fused full-metric step (`fast::fused::full_step`) against the reference's separate
+//! derivatives and step (`update::metric_derivatives`, `update::metric_step`): bit-identical
+//! results.
 
 use crate::config::{LwprConfig, MetricInit};
-use crate::metric::{derivatives, step, MetricAcc, MetricScratch};
-use crate::metric_full::full_step;
+use crate::fast::fused::full_step;
 use crate::params::Params;
+use crate::update::metric::{MetricAcc, MetricScratch};
+use crate::update::metric_derivatives::derivatives;
+use crate::update::metric_step::{mtm, step};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -44,8 +47,8 @@ pub(super) fn case(nk: usize, meta: bool, seed: u64) -> Case {
         }
     }
     let mut d = vec![0.0; nk * nk];
-    let mut ws = MetricScratch::new(nk, nk * nk);
-    crate::metric_full::mtm(nk, &m, &mut d);
+    let mut ws = MetricScratch::new(nk, nk * nk, crate::fast::wide::scratch_len(nk, nk * nk));
+    mtm(nk, &m, &mut d);
     let alpha: Vec<f64> = (0..nk * nk).map(|_| rng.random_range(1.0..300.0)).collect();
     let b: Vec<f64> = alpha.iter().map(|a: &f64| a.ln()).collect();
     let hm: Vec<f64> = (0..nk * nk)

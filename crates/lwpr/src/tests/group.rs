@@ -5,56 +5,39 @@
 //! direction (they are updated alone, the others still in groups). Both group sizes must have
 //! run where the shape groups.
 
-use super::rf_2d::{cases, train, Run};
+use super::rf_2d::{cases, train, train_on, Path, Run};
 use crate::config::LwprConfig;
 use crate::datasets::cross_config;
+use crate::fast::groups_apply;
 use crate::model::Lwpr;
-use crate::rf::{Pls, Rf};
-use std::cell::Cell;
+use crate::pls::Pls;
+use crate::rf::Rf;
 
-thread_local! {
-    /// Set: no grouping (see `rf_update_group::switched_off`).
-    pub(crate) static OFF: Cell<bool> = const { Cell::new(false) };
-    /// Groups of two and of three that ran.
-    static GROUPS: Cell<[u64; 2]> = const { Cell::new([0; 2]) };
-}
-
-/// Counts a group of `g` RFs (called by `rf_update_group`).
-pub(crate) fn count(g: usize) {
-    GROUPS.with(|c| {
-        let mut v = c.get();
-        v[g - 2] += 1;
-        c.set(v);
-    });
-}
-
-/// `train` with grouping on or off; the groups of two and three that ran.
+/// `train` with grouping on or off; the updates whose active RFs form groups of two and of
+/// three (where every RF has two directions).
 fn run(off: bool, m: &mut Lwpr, seed: u64, n: usize) -> (Run, [u64; 2]) {
-    OFF.with(|f| f.set(off));
-    GROUPS.with(|c| c.set([0; 2]));
-    let r = train(false, m, seed, n);
-    OFF.with(|f| f.set(false));
-    (r, GROUPS.with(|c| c.get()))
+    let path = if off { Path::NoGroups } else { Path::Fast };
+    let r = train_on(path, m, seed, n);
+    let sizes = r.5;
+    (r, sizes)
 }
 
-/// Asserts that grouped and one-at-a-time training agree and that both group sizes ran (none
-/// when `grouped` is false: the shape does not group).
+/// Asserts that grouped and one-at-a-time training agree, that the dispatch groups the shape
+/// exactly when `grouped`, and that updates with groups of both sizes were common.
 fn compare(name: &str, grouped: bool, mk: impl Fn() -> Lwpr, seed: u64, n: usize) {
+    let m = mk();
+    let p = m.params();
+    assert_eq!(
+        groups_apply(p.nk(), p.nr(), p),
+        grouped,
+        "{name}: the dispatch's choice"
+    );
     let (g, counts) = run(false, &mut mk(), seed, n);
-    let (s, none) = run(true, &mut mk(), seed, n);
-    assert_eq!(none, [0, 0], "{name}: grouped with the switch off");
-    if grouped {
-        assert!(
-            counts[0] > 100 && counts[1] > 100,
-            "{name}: groups of two and three ran {counts:?} times: the test misses its case"
-        );
-    } else {
-        assert_eq!(
-            counts,
-            [0, 0],
-            "{name}: grouped a shape that does not group"
-        );
-    }
+    let (s, _) = run(true, &mut mk(), seed, n);
+    assert!(
+        counts[0] > 100 && counts[1] > 100,
+        "{name}: updates with groups of two and of three {counts:?}: the test misses its case"
+    );
     assert!(g.1.len() > 150, "{name}: too few predictions");
     assert!(g.0 == s.0, "{name}: the saved models differ");
     assert_eq!(g.1, s.1, "{name}: the predictions differ");

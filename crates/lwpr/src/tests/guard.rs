@@ -3,7 +3,7 @@
 
 use crate::datasets::{cross_config, cross_train};
 use crate::model::Lwpr;
-use crate::partition::{Activation, RfEvent, RfId};
+use crate::rf::{Activation, RfEvent, RfId};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 

@@ -1,12 +1,14 @@
 //! Unit tests of internals: derivatives against finite differences, PLS exactness, the
 //! metric steps against each other.
 
-pub(crate) mod activation;
-pub(crate) mod const_r;
+mod activation;
+mod const_r;
 mod derivatives;
 mod fused;
-pub(crate) mod group;
+mod group;
 mod guard;
+mod paths;
 mod pls_exact;
-pub(crate) mod rf_2d;
+mod rf_2d;
+mod shapes;
 mod wide;

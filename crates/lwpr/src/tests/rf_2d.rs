@@ -8,36 +8,60 @@
 //! inputs, fast forgetting), and for RFs whose two directions have seen different amounts of
 //! data (as a loaded model may have).
 //!
-//! The general path here is `output_step::<0>` and `scratch::quad` per RF: `FORCE_DYNAMIC`
-//! switches off all four shortcuts (the constant two directions are compared with it in
-//! `const_r.rs`).
+//! The general path here is the reference (`update::reference::Reference`: the code of
+//! `update/` and `predict/blend.rs` alone, dimensions from the model); the fast path is the
+//! production one (the RF groups of `fast/group.rs` included, compared on their own in
+//! `group.rs`).
 
-use super::const_r::FORCE_DYNAMIC;
-use crate::config::{Kernel, LwprConfig, Norm};
+use super::paths::{predict_reference, update_flags, update_reference};
+use crate::config::{Kernel, LwprConfig};
+use crate::fast::{ALL, GROUPS};
 use crate::model::Lwpr;
+use crate::norm::Norm;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use std::cell::Cell;
-
-thread_local! {
-    /// PLS steps that took the 2-D path (counted by `rf_update_2d::regression_2d`).
-    pub(crate) static TAKEN: Cell<u64> = const { Cell::new(0) };
-    /// Elements of `M` whose step the 2-D path halved into a rate cut (`metric_2d`).
-    pub(crate) static HALVED: Cell<u64> = const { Cell::new(0) };
-}
 
 /// What a run gives: the saved model, the predictions of every update and then of the model
-/// on a fixed set of inputs, and the counts of 2-D updates, halved steps and pruned RFs.
-pub(crate) type Run = (Vec<u8>, Vec<u64>, u64, u64, usize);
+/// on a fixed set of inputs, the RF updates, the rates that a step halved (with meta learning
+/// off, where only halving changes a rate: elements of `M` with a rate below `init_alpha`) and
+/// the pruned RFs, and the updates whose active RFs form groups of two and of three (if every
+/// RF has two directions, as in 2-D models).
+pub(crate) type Run = (Vec<u8>, Vec<u64>, u64, u64, usize, [u64; 2]);
 
-/// Trains `m` on `n` samples (seed `seed`) with the 2-D path on or off. Targets: the cross
+/// The paths a test trains on.
+#[derive(Clone, Copy, PartialEq)]
+pub(crate) enum Path {
+    /// Production.
+    Fast,
+    /// Production without the RF groups.
+    NoGroups,
+    /// The reference.
+    Reference,
+}
+
+/// Trains `m` on `n` samples (seed `seed`) on the fast path or (`general`) the reference. Targets: the cross
 /// function of inputs 0 and 1 plus a linear term in the last input, with noise; a second
 /// output, if any, is its negative plus the first input.
 pub(crate) fn train(general: bool, m: &mut Lwpr, seed: u64, n: usize) -> Run {
+    train_on(
+        if general { Path::Reference } else { Path::Fast },
+        m,
+        seed,
+        n,
+    )
+}
+
+/// [`train`] on `path`.
+pub(crate) fn train_on(path: Path, m: &mut Lwpr, seed: u64, n: usize) -> Run {
+    let general = path == Path::Reference;
     let (n_in, n_out) = (m.params().n_in, m.params().n_out);
-    FORCE_DYNAMIC.with(|f| f.set(general));
-    TAKEN.with(|c| c.set(0));
-    HALVED.with(|c| c.set(0));
+    assert_eq!(
+        (m.params().nk(), m.params().nr()),
+        (2, 2),
+        "not the 2-D shape"
+    );
+    let mut rf_updates = 0;
+    let mut sizes = [0; 2];
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let mut pruned = 0;
     let mut preds = Vec::new();
@@ -53,7 +77,16 @@ pub(crate) fn train(general: bool, m: &mut Lwpr, seed: u64, n: usize) -> Run {
         let x: Vec<f64> = (0..n_in).map(|_| rng.random_range(-1.0..1.0)).collect();
         let y0 = f(&x) + 0.1 * rng.random_range(-1.0..1.0);
         let y = [y0, x[0] - y0];
-        let info = m.update(&x, &y[..n_out]).unwrap();
+        let info = match path {
+            Path::Reference => update_reference(m, &x, &y[..n_out]),
+            Path::NoGroups => update_flags::<{ ALL & !GROUPS }>(m, &x, &y[..n_out]),
+            Path::Fast => m.update(&x, &y[..n_out]).unwrap(),
+        };
+        rf_updates += info.updated as u64;
+        // The groups `fast/group.rs` forms of `u` active RFs (threes, twos when 2 or 4 are left).
+        let u = info.updated;
+        sizes[0] += (u >= 2 && u % 3 != 0) as u64;
+        sizes[1] += (u == 3 || u >= 5) as u64;
         pruned += info.pruned;
         // The update's own prediction (its blend of the updated RFs) and its guard count.
         preds.extend(m.last_update_prediction().iter().map(|v| v.to_bits()));
@@ -64,20 +97,50 @@ pub(crate) fn train(general: bool, m: &mut Lwpr, seed: u64, n: usize) -> Run {
             .map(|i| ((k * (i + 3)) % 41) as f64 / 20.0 - 1.0)
             .collect();
         let mut y = vec![0.0; n_out];
-        if m.predict(&x, &mut y).is_ok() {
+        let y = if general {
+            predict_reference(m, &x)
+        } else {
+            m.predict(&x, &mut y).is_ok().then_some(y)
+        };
+        if let Some(y) = y {
             preds.extend(y.iter().map(|v| v.to_bits()));
         }
     }
-    FORCE_DYNAMIC.with(|f| f.set(false));
-    let counts = (TAKEN.with(|c| c.get()), HALVED.with(|c| c.get()));
-    (m.to_bytes(), preds, counts.0, counts.1, pruned)
+    (
+        m.to_bytes(),
+        preds,
+        rf_updates,
+        halved_rates(m),
+        pruned,
+        sizes,
+    )
 }
 
-/// Asserts that the two paths agree and that the 2-D one ran; returns the halved steps and
+/// With meta learning off, the elements of `M` (over all RFs) whose rate is below
+/// `init_alpha`: halved by a step at least once (or copied from an RF that was); 0 with meta
+/// learning on.
+fn halved_rates(m: &Lwpr) -> u64 {
+    let cfg = &m.params().cfg;
+    if cfg.meta {
+        return 0;
+    }
+    let mut n = 0;
+    for s in 0..m.n_sub() {
+        for v in m.rfs(s).unwrap() {
+            let (r, nk) = (v.learning_rates(), m.params().nk());
+            n += (0..nk)
+                .flat_map(|i| (i..nk).map(move |j| (i, j)))
+                .filter(|&(i, j)| r[(i, j)] < cfg.init_alpha)
+                .count() as u64;
+        }
+    }
+    n
+}
+
+/// Asserts that the two paths agree and that RFs were updated; returns the halved rates and
 /// the pruned RFs.
 fn compare(name: &str, fast: Run, general: Run) -> (u64, usize) {
-    assert!(fast.2 > 5_000, "{name}: the 2-D path ran {} times", fast.2);
-    assert_eq!(general.2, 0, "{name}: the 2-D path ran with the switch on");
+    assert!(fast.2 > 5_000, "{name}: {} RF updates", fast.2);
     assert!(fast.1.len() > 150, "{name}: too few predictions");
     assert!(fast.0 == general.0, "{name}: the saved models differ");
     assert_eq!(fast.1, general.1, "{name}: the predictions differ");
@@ -109,6 +172,18 @@ pub(crate) fn cases() -> Vec<(&'static str, usize, usize, LwprConfig)> {
             1,
             LwprConfig {
                 update_d: false,
+                ..b.clone()
+            },
+        ),
+        (
+            // Large rates without meta learning: steps that would exceed a tenth of max |M|
+            // halve the rate instead.
+            "no meta, large rates",
+            2,
+            1,
+            LwprConfig {
+                meta: false,
+                init_alpha: 5000.0,
                 ..b.clone()
             },
         ),
@@ -209,7 +284,7 @@ fn the_2d_update_matches_the_general_path() {
     }
     assert!(
         halved > 0,
-        "no case halved a step: the test misses that branch"
+        "no case without meta learning halved a rate: the test misses that branch"
     );
 }
 

@@ -1,10 +1,10 @@
-//! The full-metric step above 4 dimensions (`metric_wide::wide_step`) against the fused step
-//! of `metric_full` (itself bit-identical to the separate derivatives and step): the same
+//! The full-metric step above 4 dimensions (`fast::wide::wide_step`) against the fused step
+//! (`fast::fused`) (itself bit-identical to the separate derivatives and step): the same
 //! maths with other roundings, so equal to a relative 1e-12; its AVX2+FMA and baseline copies
 //! bit-identical; its exponential within an ulp of `f64::exp`.
 
 use super::fused::case;
-use crate::metric_full::full_step;
+use crate::fast::fused::full_step;
 
 /// Runs the reference and the wide step on the same case; returns both results
 /// `[M, D, α, b, h]`.
@@ -26,7 +26,7 @@ fn both(nk: usize, meta: bool, seed: u64) -> ([Vec<f64>; 5], [Vec<f64>; 5]) {
     // The step must not depend on what its scratch held before.
     ws2.wide.fill(f64::NAN);
     let [m2, d2, a2, b2, h2] = &mut w;
-    crate::metric_wide::wide_step::<0>(nk, p, m2, d2, a2, b2, h2, acc, dwdq, ddwdqdq, &mut ws2);
+    crate::fast::wide::wide_step::<0>(nk, p, m2, d2, a2, b2, h2, acc, dwdq, ddwdqdq, &mut ws2);
     (r, w)
 }
 
@@ -74,7 +74,7 @@ fn wide_step_matches_the_fused_step() {
 #[cfg(target_arch = "x86_64")]
 #[test]
 fn wide_step_copies_give_the_same_bits() {
-    if !crate::simd::has_avx2() {
+    if !crate::fast::has_avx2() {
         return;
     }
     for nk in [5, 9, 21, 37] {
@@ -87,14 +87,12 @@ fn wide_step_copies_give_the_same_bits() {
                 if avx {
                     // SAFETY: the CPU has AVX2 and FMA (checked above).
                     unsafe {
-                        crate::metric_call::full_step_avx2::<0>(
+                        crate::fast::wide_avx2::<0>(
                             nk, p, m, d, a, b, h, acc, dwdq, ddwdqdq, &mut c.ws,
                         )
                     }
                 } else {
-                    crate::metric_call::full_step_base::<0>(
-                        nk, p, m, d, a, b, h, acc, dwdq, ddwdqdq, &mut c.ws,
-                    )
+                    crate::fast::wide_base::<0>(nk, p, m, d, a, b, h, acc, dwdq, ddwdqdq, &mut c.ws)
                 }
                 [c.m, c.d, c.alpha, c.b, c.hm]
             };
@@ -114,11 +112,11 @@ fn exp4_is_accurate() {
     let n = 100_000;
     for i in 0..=n {
         let x = -10.0 + 20.0 * i as f64 / n as f64;
-        let v = crate::metric_wide::exp4([x, -x, 0.5 * x, x + 1e-9]);
+        let v = crate::fast::lanes::exp4([x, -x, 0.5 * x, x + 1e-9]);
         for (l, t) in [x, -x, 0.5 * x, x + 1e-9].into_iter().enumerate() {
             worst = worst.max(((v[l] - t.exp()) / t.exp()).abs());
         }
     }
-    assert_eq!(crate::metric_wide::exp4([0.0; 4]), [1.0; 4]);
+    assert_eq!(crate::fast::lanes::exp4([0.0; 4]), [1.0; 4]);
     assert!(worst < 3e-16, "relative error {worst:e}");
 }

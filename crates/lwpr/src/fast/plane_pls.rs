@@ -1,16 +1,15 @@
 //! Step (b) of an update — the PLS step of one output — for two regression inputs and two
-//! directions (the most two inputs allow), with every dimension a constant:
-//! [`crate::pls::update_regression`]'s arithmetic, the same expressions in the same order (so
-//! the same bits, checked by a test against the general path), on the state viewed as
-//! fixed-size arrays, without its run-time lengths and per-element bounds checks. Chosen by
-//! `rf_update::output_step`; the 2-D metric step is [`crate::metric_2d`].
+//! directions (the most two inputs allow), with every dimension a constant: the arithmetic of
+//! `update_regression` (`update/regression.rs`), the same expressions in the same order (so the
+//! same bits, checked by a test against the reference), on the state viewed as fixed-size
+//! arrays, without its run-time lengths and per-element bounds checks.
 //!
 //! Written out term by term where the general code sums in a particular order: a dot product
-//! of two ([`crate::simd::dot`]) is `(0 + a₀b₀) + a₁b₁`; adding `0.0` is kept because it is
-//! not an identity for `−0.0`.
+//! of two (`numeric::dot`) is `(0 + a₀b₀) + a₁b₁`; adding `0.0` is kept because it is not an
+//! identity for `−0.0`.
 
-use crate::pls::{PlsScratch, RegOut};
-use crate::rf::Pls;
+use crate::pls::Pls;
+use crate::update::regression::{PlsScratch, RegOut};
 
 /// The first `N` elements of an RF's state as an array (the state is never shorter).
 #[inline(always)]
@@ -19,7 +18,7 @@ pub(crate) fn arr<const N: usize>(v: &mut [f64]) -> &mut [f64; N] {
         .expect("RF state shorter than its dimensions")
 }
 
-/// `simd::dot` of two 2-vectors, in its order.
+/// `numeric::dot` of two 2-vectors, in its order.
 #[inline(always)]
 fn dot2(a: &[f64], b: [f64; 2]) -> f64 {
     let mut r = 0.0;
@@ -28,7 +27,7 @@ fn dot2(a: &[f64], b: [f64; 2]) -> f64 {
     r
 }
 
-/// `pls::update_regression::<2>` for two regression inputs (steps (a, output part) and (b)):
+/// `update_regression::<2>` (`update/regression.rs`) for two regression inputs (steps (a, output part) and (b)):
 /// the same arithmetic on fixed-size arrays; `x̃` from `ws.xmz`, the new projections into
 /// `ws.s`, `n_data` and `λ` as before this update.
 #[inline(always)]
@@ -45,7 +44,7 @@ pub(crate) fn regression_2d(
 }
 
 /// [`regression_2d`] on `x̃ = xmz` (a copy of the input), returning the new projections
-/// instead of writing them to the scratch: what [`crate::rf_update_group`] calls for each RF
+/// instead of writing them to the scratch: what `fast/group.rs` calls for each RF
 /// of a group.
 #[inline(always)]
 pub(crate) fn regression_2d_core(
@@ -55,8 +54,6 @@ pub(crate) fn regression_2d_core(
     w: f64,
     xmz: [f64; 2],
 ) -> (RegOut, [f64; 2]) {
-    #[cfg(test)]
-    crate::tests::rf_2d::TAKEN.with(|n| n.set(n.get() + 1));
     let n_data = *arr::<2>(&mut out.n_data);
     let lambda = *arr::<2>(&mut out.lambda);
     out.beta0 = (omega * out.beta0 + w * y) / (omega + w);
@@ -92,7 +89,7 @@ pub(crate) fn regression_2d_core(
         e_cv[j] = ymz - yres;
     }
     let mut ws2 = 0.0;
-    // Numerical guard (`pls::update_regression`): the sum of every `u`, `β`, `p` computed.
+    // Numerical guard (`update_regression`): the sum of every `u`, `β`, `p` computed.
     let mut chk = 0.0;
     for j in 0..2 {
         let lam = lambda[j];

@@ -1,18 +1,7 @@
-//! Run-time choice of the vector instruction set for the hot paths.
-//!
-//! The hot functions are `#[inline(always)]` and compiled into one baseline and one AVX2 entry
-//! point each. Without fast-math the compiler never reorders floating-point operations, so
-//! both entry points compute bit-identical results; AVX2 only makes the contiguous element-wise
-//! loops wider.
-
-/// Whether the CPU supports AVX2 and FMA (cached by the standard library after the first
-/// query). The full-metric step above 4 dimensions uses FMA (`crate::metric_wide`); every
-/// other AVX2 entry point only AVX2.
-#[cfg(target_arch = "x86_64")]
-#[inline]
-pub(crate) fn has_avx2() -> bool {
-    std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma")
-}
+//! Floating-point primitives with a fixed order of operations — a dot product, `max |v|` and
+//! a branch-free exponential — written so that the compiler can vectorise them (their results
+//! do not depend on the instruction set: without fast-math the compiler never reorders
+//! floating-point operations).
 
 /// `max(acc, max_i |v_i|)` with `f64::max` (NaNs ignored). The maximum is exact and
 /// order-independent, so four independent lanes give the same value as a sequential fold.

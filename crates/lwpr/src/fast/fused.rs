@@ -1,14 +1,15 @@
-//! The distance-metric step (d) for a full metric `D = MᵀM` in one pass per row of `M`:
-//! the derivatives of [`crate::metric::derivatives`] and the step of [`crate::metric::step`]
-//! fused, with the same expressions in the same order (bit-identical results, checked by a
-//! test), so that each row of `M` is read and written once instead of once per quantity.
+//! The distance-metric step (d) for a full metric `D = MᵀM` in one pass per row of `M`: the
+//! derivatives (`update/metric_derivatives.rs`) and the step (`update/metric_step.rs`) fused,
+//! with the same expressions in the same order (bit-identical results, checked by a test), so
+//! that each row of `M` is read and written once instead of once per quantity.
 //!
-//! Used for kernels of up to 4 dimensions; above, [`crate::metric_wide::wide_step`] does the
-//! same step four lanes at a time and is tested against this one.
+//! Used for kernels of up to 4 dimensions; above, `fast/wide.rs` does the same step four lanes
+//! at a time and is tested against this one.
 
-use crate::metric::{Coef, MetricAcc, MetricScratch};
+use crate::numeric::{dot, max_abs};
 use crate::params::Params;
-use crate::simd::{dot, max_abs};
+use crate::update::metric::{MetricAcc, MetricScratch};
+use crate::update::metric_step::{exp_into, libm_exp, mtm, Coef};
 
 /// The full-metric step (d) of one RF: with `ws.dx = x − c` and the kernel derivatives
 /// `dwdq`, `ddwdqdq` at the sample, the output sums `acc` (non-empty) and `pen = γ/n`, updates
@@ -50,7 +51,7 @@ pub(crate) fn full_step(
         meta,
         rate: p.cfg.meta_rate,
         max_m,
-        libm_exp: crate::metric::libm_exp(nk),
+        libm_exp: libm_exp(nk),
     };
     let thr = 0.1 * c.max_m;
     let dx = &ws.dx[..nk];
@@ -102,7 +103,7 @@ pub(crate) fn full_step(
                 let aux = (c.rate * gj * hrow[j]).clamp(-0.1, 0.1);
                 brow[j] = (brow[j] - aux).clamp(-10.0, 10.0);
             }
-            crate::metric::exp_into(c.libm_exp, &brow[..len], &mut arow[..len]);
+            exp_into(c.libm_exp, &brow[..len], &mut arow[..len]);
             for j in 0..len {
                 let a = arow[j];
                 hrow[j] = hrow[j] * (1.0 - a * gg[j]).max(0.0) - a * g[j];
@@ -122,21 +123,4 @@ pub(crate) fn full_step(
         }
     }
     mtm(nk, m, d);
-}
-
-/// `D = MᵀM` for the upper-triangular `M` (row-major, `nk × nk`): `D_ij = Σ_{k≤i} M_ki M_kj`
-/// for `j ≥ i`, mirrored below the diagonal.
-#[inline(always)]
-pub(crate) fn mtm(nk: usize, m: &[f64], d: &mut [f64]) {
-    let (m, d) = (&m[..nk * nk], &mut d[..nk * nk]);
-    for i in 0..nk {
-        for j in i..nk {
-            let mut v = 0.0;
-            for k in 0..=i {
-                v += m[k * nk + i] * m[k * nk + j];
-            }
-            d[i * nk + j] = v;
-            d[j * nk + i] = v;
-        }
-    }
 }

@@ -1,17 +1,17 @@
 //! The full-metric step (d) of a 2-D kernel (a compile-time constant): the fused step of
-//! [`crate::metric_full::full_step`] at `nk = 2` on fixed-size arrays, with the same
-//! expressions in the same order (the same bits; a test checks whole models against the
-//! general path); `max |M|` and `D = MᵀM` by the general code. Chosen by
-//! [`crate::metric_call::full_step_call`]; the 2-D PLS step is [`crate::rf_update_2d`].
+//! `fast/fused.rs` at `nk = 2` on fixed-size arrays, with the same expressions in the same order
+//! (the same bits; a test checks whole models against the reference); `max |M|` and `D = MᵀM`
+//! by the general code.
 //!
 //! `M` is upper-triangular and row-major: its free elements are `M₀₀`, `M₀₁` (row 0, indices
 //! 0 and 1) and `M₁₁` (row 1, index 3). The rows' updates are independent (each reads only its
 //! own row of `M`, `D` before the step and `M (x − c)` before the step), so they are written as
 //! one pass over the three elements.
 
-use crate::metric::MetricAcc;
+use crate::numeric::max_abs;
 use crate::params::Params;
-use crate::simd::max_abs;
+use crate::update::metric::MetricAcc;
+use crate::update::metric_step::mtm;
 
 /// One RF's metric state (`2 × 2` row-major; `M`, `α`, `b`, `hm` use the upper triangle).
 pub(crate) struct MetricState<'a> {
@@ -40,7 +40,7 @@ pub(crate) fn step_2d(
 ) {
     let MetricState { m, d, alpha, b, hm } = st;
     // `α = e^b` by `f64::exp` below, as `full_step` does at this size.
-    debug_assert!(crate::metric::libm_exp(2));
+    debug_assert!(crate::update::metric_step::libm_exp(2));
     let (meta, rate, pen) = (p.cfg.meta, p.cfg.meta_rate, p.penalty_n);
     let inv_n = 1.0 / acc.n as f64;
     let (ca, cb, cc) = (acc.a * inv_n, acc.b * inv_n, acc.c * inv_n);
@@ -101,12 +101,8 @@ pub(crate) fn step_2d(
         let k = K[e];
         let dm = alpha[k] * g[e];
         let halve = dm > thr;
-        #[cfg(test)]
-        if halve {
-            crate::tests::rf_2d::HALVED.with(|n| n.set(n.get() + 1));
-        }
         alpha[k] = if halve { alpha[k] * 0.5 } else { alpha[k] };
         m[k] = if halve { m[k] } else { m[k] - dm };
     }
-    crate::metric_full::mtm(2, m, d);
+    mtm(2, m, d);
 }

@@ -1,5 +1,5 @@
 //! The full-metric step (d) for kernels of more than 4 dimensions: the maths of
-//! [`crate::metric_full::full_step`] four lanes at a time with fused multiply-adds, on the
+//! `full_step` (`fast/fused.rs`) four lanes at a time with fused multiply-adds, on the
 //! RF's state in place.
 //!
 //! `M·D` and `D = MᵀM` are sums of whole rows of `D` and `M` scaled by one element each, read
@@ -21,72 +21,22 @@
 //! than on AVX2+FMA (65 µs against 2.6 µs at 21-D, measured by forcing the baseline copy):
 //! the price of the same bits on every CPU.
 
-use crate::metric::{MetricAcc, MetricScratch};
+use crate::fast::lanes::{exp4, fma, hsum, load, map2, mul, splat, store, sub, V};
+use crate::numeric::max_abs;
 use crate::params::Params;
+use crate::update::metric::{MetricAcc, MetricScratch};
 
-/// Four lanes.
-type V = [f64; 4];
+/// The smallest kernel dimension whose full-metric steps the fast path takes here.
+pub(crate) const MIN_DIMS: usize = 5;
 
-#[inline(always)]
-fn splat(x: f64) -> V {
-    [x; 4]
-}
-
-#[inline(always)]
-fn map2(a: V, b: V, f: impl Fn(f64, f64) -> f64) -> V {
-    [f(a[0], b[0]), f(a[1], b[1]), f(a[2], b[2]), f(a[3], b[3])]
-}
-
-#[inline(always)]
-fn mul(a: V, b: V) -> V {
-    map2(a, b, |x, y| x * y)
-}
-
-#[inline(always)]
-fn sub(a: V, b: V) -> V {
-    map2(a, b, |x, y| x - y)
-}
-
-/// `a·b + c` with one rounding.
-#[inline(always)]
-fn fma(a: V, b: V, c: V) -> V {
-    [
-        a[0].mul_add(b[0], c[0]),
-        a[1].mul_add(b[1], c[1]),
-        a[2].mul_add(b[2], c[2]),
-        a[3].mul_add(b[3], c[3]),
-    ]
-}
-
-/// `(v₀ + v₁) + (v₂ + v₃)`.
-#[inline(always)]
-fn hsum(v: V) -> f64 {
-    (v[0] + v[1]) + (v[2] + v[3])
-}
-
-/// `e^x` lane-wise for `x ∈ [−10, 10]` (the clipped `b = ln α`): the scheme of
-/// [`crate::simd::exp_fast`] with fused multiply-adds (within one unit in the last place of
-/// `f64::exp`, tested).
-#[inline(always)]
-pub(crate) fn exp4(x: V) -> V {
-    use crate::simd::{EXP_C as C, EXP_SHIFT as SHIFT, LN2_HI, LN2_LO};
-    // k = round(x / ln 2) (in t's low mantissa bits), r = x − k ln 2 (k·LN2_HI is exact).
-    let t = fma(x, splat(std::f64::consts::LOG2_E), splat(SHIFT));
-    let kf = sub(t, splat(SHIFT));
-    let r = fma(kf, splat(-LN2_LO), fma(kf, splat(-LN2_HI), x));
-    let (r2, c) = (mul(r, r), |i: usize| splat(C[i]));
-    let r4 = mul(r2, r2);
-    let r8 = mul(r4, r4);
-    let (t0, t1, t2) = (fma(c(1), r, c(0)), fma(c(3), r, c(2)), fma(c(5), r, c(4)));
-    let (t3, t4, t5) = (fma(c(7), r, c(6)), fma(c(9), r, c(8)), fma(c(11), r, c(10)));
-    let (u0, u1, u2) = (fma(t1, r2, t0), fma(t3, r2, t2), fma(t5, r2, t4));
-    let tail = fma(u2, r8, fma(u1, r4, u0));
-    let p = fma(r2, tail, r);
-    let scale = t.map(|v| {
-        let k_bits = v.to_bits().wrapping_sub(SHIFT.to_bits());
-        f64::from_bits(k_bits.wrapping_add(1023) << 52)
-    });
-    map2(p, scale, |p, s| (1.0 + p) * s)
+/// The length of the wide step's scratch in `MetricScratch::wide` for `nk` kernel dimensions
+/// and `mlen` metric elements: [`wide_len`] for full metrics of [`MIN_DIMS`] or more, else 0.
+pub(crate) fn scratch_len(nk: usize, mlen: usize) -> usize {
+    if mlen == nk * nk && nk >= MIN_DIMS {
+        wide_len(nk)
+    } else {
+        0
+    }
 }
 
 /// `Σ_t s_t · row_t[c0..c1]` over the terms `(s_t, row_t)` in order (`c1 − c0 ≤ 8` vectors,
@@ -101,35 +51,6 @@ fn combine<'a>(terms: impl Iterator<Item = (f64, &'a [V])>, c0: usize, c1: usize
         }
     }
     a
-}
-
-/// Four elements from `s[i..]`, the lanes from `rem` on zero.
-#[inline(always)]
-fn load(s: &[f64], i: usize, rem: usize) -> V {
-    if rem >= 4 {
-        s[i..i + 4].try_into().unwrap()
-    } else {
-        std::array::from_fn(|l| if l < rem { s[i + l] } else { 0.0 })
-    }
-}
-
-/// Stores the first `min(rem, 4)` lanes of `v` at `s[i..]`.
-#[inline(always)]
-fn store(s: &mut [f64], i: usize, rem: usize, v: V) {
-    if rem >= 4 {
-        s[i..i + 4].copy_from_slice(&v);
-    } else {
-        // Lane by lane (a loop of one store would become a call of `memcpy`).
-        if rem > 0 {
-            s[i] = v[0];
-        }
-        if rem > 1 {
-            s[i + 1] = v[1];
-        }
-        if rem > 2 {
-            s[i + 2] = v[2];
-        }
-    }
 }
 
 /// Row `r` of the row-major `nk × nk` matrix `a` as `q` vectors (`4q ≥ nk` columns): in place
@@ -164,8 +85,8 @@ pub(crate) fn wide_len(nk: usize) -> usize {
     2 * nk * s + 2 * padded(nk) + 2 * s
 }
 
-/// The full-metric step (d) of one RF for `nk > 4`, with the arguments of
-/// [`crate::metric_full::full_step`] (there: what each is); `NK > 0` fixes `nk` at compile
+/// The full-metric step (d) of one RF for `nk > 4`, with the arguments of `full_step`
+/// (`fast/fused.rs`, there: what each is); `NK > 0` fixes `nk` at compile
 /// time. Uses `ws.dx`, `ws.mdx`, `ws.row` and `ws.wide`.
 ///
 /// `M·D` and `D = MᵀM` combine rows of `D` and `M` read in place four columns at a time (the
@@ -212,7 +133,7 @@ pub(crate) fn wide_step<const NK: usize>(
     d_last[..nk].copy_from_slice(&d[nn - nk..]);
 
     // max |M| (exact in any order; the lower triangle is zero).
-    let max_m = crate::simd::max_abs(0.0, m);
+    let max_m = max_abs(0.0, m);
 
     // Row n of M·D (the penalty gradient, from the unchanged M and D) into the first block,
     // in column blocks of up to 8 vectors held in registers.

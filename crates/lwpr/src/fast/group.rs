@@ -1,6 +1,6 @@
 //! The RF updates of the 2-D cross test's shape — kernel and regression on two inputs, full
 //! metric, one output per sub-model, two PLS directions — taken three (or two) RFs at a time:
-//! each step of [`crate::rf_update::update_rf`] (means, PLS, cost terms, metric step, guard and
+//! each step of `update_rf` (`update/rf.rs`) (means, PLS, cost terms, metric step, guard and
 //! blend) is taken for every RF of the group before the next step. The means, the PLS step, the
 //! cost terms, forgetting and the metric step are the 2-D code `update_rf` calls; the trust
 //! test, the guard's sum and the blend are written out here, as there. The results are those
@@ -12,24 +12,39 @@
 //! next one's. Interleaved by steps, neighbouring steps belong to different RFs and are
 //! independent. Measured (fingerprint, 2-D cross, seed 0, 20 epochs, 16 interleaved runs): the
 //! update about 9 % faster when the machine is quiet (median ratios 0.904–0.913), about 1 %
-//! when a neighbour shares the core; 2.3 % fewer instructions (`crates/lwpr/SPEED.md`,
+//! when a neighbour shares the core; 2.3 % fewer instructions (`docs/history/lwpr-speed.md`,
 //! ninth round).
 
-use crate::metric::MetricAcc;
-use crate::metric_2d::{step_2d, MetricState};
+use crate::fast::plane_metric::{step_2d, MetricState};
+use crate::fast::plane_pls::{arr, regression_2d_core};
 use crate::params::Params;
-use crate::pls::{self, RegOut};
 use crate::rf::SubModel;
-use crate::rf_update::{after_regression, RfOutcome};
-use crate::rf_update_2d::{arr, regression_2d_core};
 use crate::scratch::Scratch;
+use crate::update::metric::MetricAcc;
+use crate::update::regression::{update_input_means, RegOut};
+use crate::update::rf::{after_regression, start_blend, update_one, RfOutcome};
+use crate::update::Stages;
 
-/// Whether the update of a sub-model of this shape groups its RFs ([`update_groups`]): the
-/// kernel and regression dimensions `NK`, `NR` (constants of the update's copy), the metric
-/// and the outputs per RF from `p`.
+/// `Stages::update_active` with groups: the RFs of `ws.active` in groups of three or two
+/// where they can be ([`update_groups`]), the others one at a time by `update_one`.
 #[inline(always)]
-pub(crate) fn applies<const NK: usize, const NR: usize>(p: &Params) -> bool {
-    NK == 2 && NR == 2 && !p.cfg.diag_only && p.n_local_out() == 1 && !switched_off()
+pub(crate) fn update_active_grouped<S: Stages>(
+    p: &Params,
+    sub: &mut SubModel,
+    o0: usize,
+    ws: &mut Scratch,
+) -> f64 {
+    let mut sum_w = start_blend(p, ws);
+    let mut a = 0;
+    while a < ws.active.len() {
+        a = update_groups(p, sub, a, o0, ws, &mut sum_w);
+        if a == ws.active.len() {
+            break;
+        }
+        update_one::<S>(p, sub, a, o0, ws, &mut sum_w);
+        a += 1;
+    }
+    sum_w
 }
 
 /// Updates the active RFs `ws.active[a..]` of `sub` from `a` on in groups of three (two when
@@ -82,8 +97,6 @@ fn group<const G: usize>(
     if act.iter().any(|x| sub.rfs[x.0].outs[0].n_reg != 2) {
         return false;
     }
-    #[cfg(test)]
-    crate::tests::group::count(G);
     let r = update_group_2d::<G>(p, sub, act, o0, ws);
     for l in 0..G {
         if r[l].blended {
@@ -97,7 +110,7 @@ fn group<const G: usize>(
 }
 
 /// Updates the RFs `act[l]` (index, w, dw/dq, d²w/dq², distinct indices) of `sub`, each with
-/// two directions, as [`crate::rf_update::update_rf`] would one after the other, their steps
+/// two directions, as `update_rf` (`update/rf.rs`) would one after the other, their steps
 /// interleaved; adds the predictions of those trustworthy and finite to the blend (`ws.yacc`)
 /// in order.
 #[inline(always)]
@@ -128,7 +141,7 @@ fn update_group_2d<const L: usize>(
     let mut xmz = [[0.0; 2]; L];
     for l in 0..L {
         omega[l] = rf[l].outs[0].sum_w[0] * rf[l].outs[0].lambda[0];
-        pls::update_input_means(2, rf[l], omega[l], &xr, w[l], &mut xmz[l]);
+        update_input_means(2, rf[l], omega[l], &xr, w[l], &mut xmz[l]);
         if rf[l].outs[0].n_data[0] > 2.0 * 2.0 {
             rf[l].trustworthy = true;
         }
@@ -186,17 +199,4 @@ fn update_group_2d<const L: usize>(
         outc[l] = RfOutcome { blended, finite };
     }
     outc
-}
-
-/// Tests can switch the grouping off (per thread), to compare it with the RFs' updates one at
-/// a time; always `false` outside tests.
-#[cfg(test)]
-fn switched_off() -> bool {
-    crate::tests::group::OFF.with(|f| f.get())
-}
-
-#[cfg(not(test))]
-#[inline(always)]
-fn switched_off() -> bool {
-    false
 }
