@@ -1,4 +1,4 @@
-//! The standard cross test (`shared/LWPR.md`), small version: seeds 0–3 of the full 500-point,
+//! The standard cross test (`docs/lwpr.md`, "The cross tests"), small version: seeds 0–3 of the full 500-point,
 //! 20-epoch protocol. This is a regression guard (every seed below 0.06, at most 45 RFs); the
 //! target itself (median over 10 seeds ≤ 0.04) is measured by `osrl bench lwpr`.
 

@@ -1,14 +1,14 @@
-//! Cross-check against an independent implementation. `scripts/lwpr_reference_model.py` is a
-//! second LWPR in plain numpy, written from `shared/LWPR.md` and the reference C library's
-//! behaviour and sharing no code with this crate; `scripts/lwpr_reference.py` runs it. It
+//! Cross-check against an independent implementation. `scripts/lwpr_reference_model.py` is a second
+//! LWPR in plain numpy, written from the description of LWPR (`docs/lwpr.md`) and the reference C
+//! library's behaviour and sharing no code with this crate; `scripts/lwpr_reference.py` runs it. It
 //! trained on the two cross tests' configs and recorded every update's prediction (made before
-//! learning) and RF count, and the final model's predictions and confidence bounds on the test
-//! grid (`tests/fixtures/reference_*.txt`). This crate, replaying the same samples in the same
-//! order, must agree to 1e-9 on every one of them: RF creation (with and without a template),
-//! the PLS and metric updates with meta learning and rate halving, pruning, the growth of a PLS
-//! direction, and prediction with its confidence bound (which reads the statistics the
-//! predictions do not: `SSp`, and `sum_w` and `sum_e_cv2` of the last direction an RF predicts
-//! with), with a full and a diagonal metric.
+//! learning) and RF count, and the final model's predictions and confidence bounds on the test grid
+//! (`tests/fixtures/reference_*.txt`). This crate, replaying the same samples in the same order,
+//! must agree to 1e-9 on every one of them: RF creation (with and without a template), the PLS and
+//! metric updates with meta learning and rate halving, pruning, the growth of a PLS direction, and
+//! prediction with its confidence bound (which reads the statistics the predictions do not: `SSp`,
+//! and `sum_w` and `sum_e_cv2` of the last direction an RF predicts with), with a full and a
+//! diagonal metric.
 //!
 //! `LWPR_REFERENCE=FILE cargo test --release -p lwpr --test reference -- --ignored` replays
 //! another fixture, such as a full-length run written by `lwpr_reference.py one`, with the
