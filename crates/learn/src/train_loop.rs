@@ -215,7 +215,7 @@ pub fn train<R: Robot + ?Sized>(
     // Phase 2: on-policy learning along the task, episodes from home.
     progress.phase = "on-policy";
     run.learning = cfg.learn_on_policy;
-    let gravity_on = run.learner.config().gravity_on_policy;
+    let gravity_on = run.learner.config().experimental.gravity_on_policy;
     run.learner.freeze_gravity(!gravity_on);
     let mut xdd_ref = vec![0.0; m];
     // The previous command of this episode (for the largest command step), if any.
