@@ -1,0 +1,81 @@
+//! The sums of an evaluation window and the metrics they give (`docs/learner.md`, "Evaluation").
+
+use super::EvalResult;
+
+/// Sums of one evaluation window.
+pub(super) struct Acc {
+    pub count: usize,
+    e2: f64,
+    emax: f64,
+    du2: f64,
+    c_l: f64,
+    c_s: f64,
+    pub null2: f64,
+    pub nom2: f64,
+    pub nom_null2: f64,
+    pub gain_err: f64,
+    pub gain_count: usize,
+    fall: usize,
+    s1: Vec<f64>,
+    s2: Vec<f64>,
+}
+
+impl Acc {
+    pub fn new(n: usize) -> Self {
+        Self {
+            count: 0,
+            e2: 0.0,
+            emax: 0.0,
+            du2: 0.0,
+            c_l: 0.0,
+            c_s: 0.0,
+            null2: 0.0,
+            nom2: 0.0,
+            nom_null2: 0.0,
+            gain_err: 0.0,
+            gain_count: 0,
+            fall: 0,
+            s1: vec![0.0; n],
+            s2: vec![0.0; n],
+        }
+    }
+
+    pub fn add(&mut self, e: f64, fallback: bool, u: &[f64], u_star: &[f64], u0: &[f64]) {
+        self.count += 1;
+        self.e2 += e * e;
+        self.emax = self.emax.max(e);
+        self.fall += fallback as usize;
+        for i in 0..u.len() {
+            self.du2 += (u[i] - u_star[i]).powi(2);
+            self.c_l += (u[i] - u0[i]).powi(2);
+            self.c_s += (u_star[i] - u0[i]).powi(2);
+            self.s1[i] += u_star[i];
+            self.s2[i] += u_star[i] * u_star[i];
+        }
+    }
+
+    pub fn result(&self, step_l: f64, step_a: f64, diverged: bool) -> EvalResult {
+        let c = self.count.max(1) as f64;
+        let var: f64 = (0..self.s1.len())
+            .map(|i| self.s2[i] / c - (self.s1[i] / c).powi(2))
+            .sum::<f64>()
+            .max(1e-12);
+        EvalResult {
+            tracking_rms_mm: 1e3 * (self.e2 / c).sqrt(),
+            tracking_max_mm: 1e3 * self.emax,
+            command_nmse: self.du2 / c / var,
+            command_cost_ratio: self.c_l / self.c_s.max(1e-12),
+            command_nmse_null: self.null2 / c / var,
+            nominal_nmse: self.nom2 / c / var,
+            nominal_nmse_null: self.nom_null2 / c / var,
+            u_star_variance: var,
+            u_star_cost: self.c_s / c,
+            gain_error: self.gain_err / self.gain_count.max(1) as f64,
+            fallback_share: self.fall as f64 / c,
+            max_command_step: step_l,
+            max_command_step_analytical: step_a,
+            diverged,
+        }
+    }
+}
+
