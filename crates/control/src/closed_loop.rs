@@ -5,8 +5,8 @@ use crate::controller::TaskController;
 use crate::error::{ControlError, Result};
 use crate::trajectory::{Target, Trajectory};
 use osrl_dynamics::{Measurement, Robot};
-use std::ops::ControlFlow;
 use serde::{Deserialize, Serialize};
+use std::ops::ControlFlow;
 
 /// Time series of one run, one row per control step (row-major flat vectors).
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -152,10 +152,7 @@ where
             return Ok(Ended::Stopped { k });
         }
         if let Err(e) = robot.step(&u) {
-            return Ok(Ended::RobotFailed {
-                k,
-                error: e.into(),
-            });
+            return Ok(Ended::RobotFailed { k, error: e.into() });
         }
     }
     Ok(Ended::Completed)
@@ -179,7 +176,8 @@ impl<C: ?Sized> StepObserver<C> for Recorder {
     fn observe(&mut self, _: &mut C, step: &StepView) -> Result<ControlFlow<()>> {
         let (meas, u, s) = (step.meas, step.u, &mut self.s);
         s.t.push(meas.t);
-        s.x_d.extend(self.task_axes.iter().map(|&a| step.target.x[a]));
+        s.x_d
+            .extend(self.task_axes.iter().map(|&a| step.target.x[a]));
         s.x.extend(meas.x.iter());
         s.q.extend(meas.q.iter());
         s.u.extend(u);

@@ -31,7 +31,9 @@ mod trajectory;
 mod trajectory_config;
 mod warp;
 
-pub use closed_loop::{drive, run_closed_loop, Ended, Metrics, Run, Series, StepObserver, StepView};
+pub use closed_loop::{
+    drive, run_closed_loop, Ended, Metrics, Run, Series, StepObserver, StepView,
+};
 pub use config::{Law, MetricKind, OscConfig};
 pub use controller::TaskController;
 pub use damping::damping;

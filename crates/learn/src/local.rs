@@ -72,7 +72,7 @@ impl Local {
             return Ok(None);
         }
         self.pending = 0;
-        if self.updates % solve_every == 0 && self.dynamics.update().is_ok() {
+        if self.updates.is_multiple_of(solve_every) && self.dynamics.update().is_ok() {
             self.dynamics_updates += 1;
         }
         Ok(Some(match self.rwr.update() {

@@ -180,27 +180,28 @@ fn commands_respect_the_torque_limits_and_bad_limits_are_refused() {
     // exploration) stays inside them, and the clipped commands are counted.
     // A learner without limits gets them set (a bad set changes nothing).
     cfg.guards.torque_limits = vec![0.5, 0.4, 0.3];
-    let mut learner = osrl_learn::Learner::new(
-        3,
-        2,
-        0.002,
-        {
-            let mut c = cfg.clone();
-            c.guards.torque_limits = Vec::new();
-            c
-        },
-    )
+    let mut learner = osrl_learn::Learner::new(3, 2, 0.002, {
+        let mut c = cfg.clone();
+        c.guards.torque_limits = Vec::new();
+        c
+    })
     .unwrap();
     assert!(learner.set_torque_limits(&[1.0, 2.0]).is_err());
     assert!(learner.config().guards.torque_limits.is_empty());
-    learner.set_torque_limits(&cfg.guards.torque_limits).unwrap();
+    learner
+        .set_torque_limits(&cfg.guards.torque_limits)
+        .unwrap();
     let mut rng = <rand_chacha::ChaCha8Rng as rand::SeedableRng>::seed_from_u64(3);
     let mut u = vec![0.0; 3];
     let q = s.q_start.clone();
     learner
         .command(&q, &[0.0; 3], &[5.0, -5.0], Some(&mut rng), &mut u)
         .unwrap();
-    let within = |u: &[f64]| u.iter().zip(&cfg.guards.torque_limits).all(|(v, l)| v.abs() <= *l);
+    let within = |u: &[f64]| {
+        u.iter()
+            .zip(&cfg.guards.torque_limits)
+            .all(|(v, l)| v.abs() <= *l)
+    };
     assert!(within(&u), "{u:?}");
     common::run(&s, &mut learner, 0.5, 0.4, 0.0, 1);
     let before = learner.stats().clipped;

@@ -49,7 +49,9 @@ impl LearnerConfig {
         ensure(c > 0.0 && c < 1.0, || {
             format!("partition.activation_cutoff {c} must be in (0, 1)")
         })?;
-        ensure(p.learn_every >= 1, || "partition.learn_every must be ≥ 1".into())?;
+        ensure(p.learn_every >= 1, || {
+            "partition.learn_every must be ≥ 1".into()
+        })?;
         if let Some(t) = p.prune_untrained_after {
             ensure(t > 0.0 && t.is_finite(), || {
                 format!("partition.prune_untrained_after {t} must be finite and > 0 (s)")
@@ -83,9 +85,14 @@ impl LearnerConfig {
         ensure(finite_at_least(c.trained_ess, 1.0), || {
             format!("controllers.trained_ess {} must be ≥ 1", c.trained_ess)
         })?;
-        ensure(c.update_every >= 1, || "controllers.update_every must be ≥ 1".into())?;
+        ensure(c.update_every >= 1, || {
+            "controllers.update_every must be ≥ 1".into()
+        })?;
         ensure((0.0..=1.0).contains(&c.null_space_shrink), || {
-            format!("controllers.null_space_shrink {} must be in [0, 1]", c.null_space_shrink)
+            format!(
+                "controllers.null_space_shrink {} must be in [0, 1]",
+                c.null_space_shrink
+            )
         })?;
         let e = &self.exploration;
         ensure(finite_at_least(e.scale, 0.0), || {
@@ -115,12 +122,20 @@ impl LearnerConfig {
                 )
             },
         )?;
-        ensure(g.warmup_samples >= 10, || "guards.warmup_samples must be ≥ 10".into())?;
+        ensure(g.warmup_samples >= 10, || {
+            "guards.warmup_samples must be ≥ 10".into()
+        })?;
         ensure(g.max_abs_acceleration > 0.0, || {
-            format!("guards.max_abs_acceleration {} must be > 0 (m/s²)", g.max_abs_acceleration)
+            format!(
+                "guards.max_abs_acceleration {} must be > 0 (m/s²)",
+                g.max_abs_acceleration
+            )
         })?;
         ensure(g.max_abs_velocity > 0.0, || {
-            format!("guards.max_abs_velocity {} must be > 0 (rad/s)", g.max_abs_velocity)
+            format!(
+                "guards.max_abs_velocity {} must be > 0 (rad/s)",
+                g.max_abs_velocity
+            )
         })
     }
 }

@@ -286,7 +286,9 @@ impl<'a> Comparison<'a> {
             return;
         };
         series.t.push(step.meas.t);
-        series.x_d.extend(self.axes.iter().map(|&a| step.target.x[a]));
+        series
+            .x_d
+            .extend(self.axes.iter().map(|&a| step.target.x[a]));
         series.x.extend(step.meas.x.iter());
         series.u.extend(step.u);
         series.u_star.extend(&self.u_star);
@@ -312,14 +314,25 @@ impl StepObserver<EvalController<'_>> for Comparison<'_> {
         }
         // The error split against the true B = J M⁻¹ at this state (0 where B is singular).
         let truth = TrueGain::new(self.osc.data(), &self.axes);
-        let null2 = truth.as_ref().map_or(0.0, |t| t.null_part2(u, &self.u_star));
-        let nom_null2 = truth.as_ref().map_or(0.0, |t| t.null_part2(&self.u0_hat, &self.u0));
+        let null2 = truth
+            .as_ref()
+            .map_or(0.0, |t| t.null_part2(u, &self.u_star));
+        let nom_null2 = truth
+            .as_ref()
+            .map_or(0.0, |t| t.null_part2(&self.u0_hat, &self.u0));
         let has_gain = match learner.input_gain(q, qd, &mut self.a_hat) {
             Ok(known) => known,
             Err(e) => return Err(keep(&mut self.error, e)),
         };
-        let gain_err = truth.filter(|_| has_gain).map(|t| t.gain_error(&self.a_hat));
-        let nom2: f64 = self.u0_hat.iter().zip(&self.u0).map(|(a, b)| (a - b).powi(2)).sum();
+        let gain_err = truth
+            .filter(|_| has_gain)
+            .map(|t| t.gain_error(&self.a_hat));
+        let nom2: f64 = self
+            .u0_hat
+            .iter()
+            .zip(&self.u0)
+            .map(|(a, b)| (a - b).powi(2))
+            .sum();
         let e = osrl_control::task_error(step.target, &self.axes, meas.x.as_slice());
         if step.k > 0 {
             self.step_l = self.step_l.max(max_abs_diff(&self.prev_u, u));
@@ -329,7 +342,10 @@ impl StepObserver<EvalController<'_>> for Comparison<'_> {
         self.prev_us.copy_from_slice(&self.u_star);
         self.record(step, ctrl.seconds);
         let fallback = ctrl.source == CommandSource::Fallback;
-        for (acc, on) in [(&mut self.window, step.k >= self.warm), (&mut self.all, true)] {
+        for (acc, on) in [
+            (&mut self.window, step.k >= self.warm),
+            (&mut self.all, true),
+        ] {
             if on {
                 acc.add(e, fallback, u, &self.u_star, &self.u0);
                 acc.null2 += null2;

@@ -33,3 +33,26 @@ impl TrueGain {
     }
 }
 
+#[cfg(test)]
+mod tests {
+    use super::TrueGain;
+    use osrl_dynamics::{robots, Data};
+
+    /// The true gain has no error against itself, and its null-space part is orthogonal to the
+    /// rows of `B`.
+    #[test]
+    fn the_true_gain_splits_a_command_error() {
+        let model = robots::planar3();
+        let mut data = Data::new(&model);
+        let q = [0.3, 0.5, -0.4];
+        osrl_dynamics::crba(&model, &mut data, &q).unwrap();
+        osrl_dynamics::jacobian(&model, &mut data, &q).unwrap();
+        let axes = model.task_axes().to_vec();
+        let t = TrueGain::new(&data, &axes).unwrap();
+        let b: Vec<f64> = (0..6).map(|k| t.b[(k / 3, k % 3)]).collect();
+        assert!(t.gain_error(&b) < 1e-15);
+        let (u, v) = ([1.0, -2.0, 0.5], [0.0; 3]);
+        let null = t.null_part2(&u, &v);
+        assert!(null > 0.0 && null < 5.25);
+    }
+}

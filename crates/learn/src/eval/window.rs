@@ -79,3 +79,28 @@ impl Acc {
     }
 }
 
+#[cfg(test)]
+mod tests {
+    use super::Acc;
+
+    /// The metrics of a window from its definition, on two steps by hand.
+    #[test]
+    fn window_metrics_follow_their_definitions() {
+        let mut acc = Acc::new(2);
+        acc.add(0.003, false, &[1.0, 2.0], &[1.5, 2.0], &[0.0, 0.0]);
+        acc.add(0.004, true, &[3.0, 1.0], &[2.5, 1.0], &[1.0, 0.0]);
+        let r = acc.result(0.7, 0.2, false);
+        assert!((r.tracking_rms_mm - (12.5f64).sqrt()).abs() < 1e-12);
+        assert!((r.tracking_max_mm - 4.0).abs() < 1e-12);
+        // var(u*) = var(1.5, 2.5) + var(2, 1) = 0.25 + 0.25; mean ‖u − u*‖² = 0.25.
+        assert!((r.command_nmse - 0.5).abs() < 1e-12, "{}", r.command_nmse);
+        // Σ ‖u − u0‖² = 5 + 5 over Σ ‖u* − u0‖² = 6.25 + 3.25.
+        assert!((r.command_cost_ratio - 10.0 / 9.5).abs() < 1e-12);
+        assert_eq!(r.fallback_share, 0.5);
+        assert_eq!(
+            (r.max_command_step, r.max_command_step_analytical),
+            (0.7, 0.2)
+        );
+        assert!(!r.diverged);
+    }
+}

@@ -138,13 +138,29 @@ impl Learner {
         }
         if self.cfg.experimental.residual {
             let u0 = &mut self.ws.u0;
-            nominal_into(&self.cfg.nominal, self.state.models_mut(), self.gravity_frozen, q, qd, u0)?;
+            nominal_into(
+                &self.cfg.nominal,
+                self.state.models_mut(),
+                self.gravity_frozen,
+                q,
+                qd,
+                u0,
+            )?;
             for (v, o) in u.iter_mut().zip(u0.iter()) {
                 *v += o;
             }
         }
         if let (Some(rng), State::Ready(models)) = (rng, &self.state) {
-            explore(&self.cfg, &self.features, models, &mut self.ws, q, sigma, rng, u);
+            explore(
+                &self.cfg,
+                &self.features,
+                models,
+                &mut self.ws,
+                q,
+                sigma,
+                rng,
+                u,
+            );
         }
         Ok(blend.source)
     }
@@ -184,5 +200,87 @@ impl Learner {
             *v = c;
         }
         self.stats.clipped += clipped as u64;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::CommandSource;
+    use crate::learner::fixture;
+    use nalgebra::DMatrix;
+    use rwr::OnlineRwr;
+
+    /// With one trained controller the blend (eq. 34) is that controller's mean plus `u0`, from
+    /// any activation; with none, the command is `u0` and counted as a fallback.
+    #[test]
+    fn a_one_field_blend_equals_that_fields_mean_plus_u0() {
+        let mut cfg = fixture::config();
+        cfg.controllers.trained_ess = 1e8;
+        let (mut learner, _, last) = fixture::ready(cfg, 200, 0);
+        let (q, qd) = (last.q.as_slice().to_vec(), last.qd.as_slice().to_vec());
+        let xdd = [0.3, -0.2];
+        let (mut u, mut u0) = ([0.0; 3], [0.0; 3]);
+        assert_eq!(
+            learner
+                .command::<rand_chacha::ChaCha8Rng>(&q, &qd, &xdd, None, &mut u)
+                .unwrap(),
+            CommandSource::Fallback
+        );
+        learner.nominal(&q, &qd, &mut u0).unwrap();
+        assert_eq!(u, u0);
+        // Train one field by hand: a known β, and an effective sample size above the threshold.
+        let p = learner.features.controller_len();
+        let beta = DMatrix::from_fn(p, 3, |r, c| 0.01 * (r as f64 + 1.0) * (c as f64 - 1.0));
+        let rwr_cfg = learner.cfg.controllers.rwr.clone();
+        let models = fixture::models(&mut learner);
+        let (id, local) = models.locals.map.iter_mut().next().unwrap();
+        let id = *id;
+        local.rwr = OnlineRwr::with_theta(beta.clone(), rwr_cfg).unwrap();
+        local.ess = 1e9;
+        let center = local.center.clone();
+        // At the field's centre, and where it is far (extrapolated), the blend is its mean.
+        for (qq, source) in [
+            (center[..3].to_vec(), CommandSource::Learned),
+            (
+                center[..3].iter().map(|c| c + 0.27).collect(),
+                CommandSource::Extrapolated,
+            ),
+        ] {
+            let vd = center[3..].to_vec();
+            let src = learner.command::<rand_chacha::ChaCha8Rng>(&qq, &vd, &xdd, None, &mut u);
+            assert_eq!(src.unwrap(), source, "field {id:?}");
+            let mut phi = vec![0.0; p];
+            learner.features.controller_common(&mut phi, &xdd, &vd);
+            learner.features.controller_local(&mut phi, &qq, &center);
+            learner.nominal(&qq, &vd, &mut u0).unwrap();
+            for j in 0..3 {
+                let mean: f64 = (0..p).map(|r| phi[r] * beta[(r, j)]).sum();
+                let want = mean + u0[j];
+                assert!(
+                    (u[j] - want).abs() < 1e-12 * (1.0 + want.abs()),
+                    "{u:?} vs {want}"
+                );
+            }
+        }
+        assert_eq!(learner.stats().extrapolations, 1);
+    }
+
+    /// The guards: wrong lengths are refused uncounted; commands stay within the torque limits.
+    #[test]
+    fn wrong_lengths_are_refused_and_limits_hold() {
+        let mut cfg = fixture::config();
+        cfg.guards.torque_limits = vec![0.1, 0.1, 0.1];
+        let (mut learner, _, last) = fixture::ready(cfg, 100, 0);
+        let before = learner.stats();
+        let mut u = [0.0; 3];
+        let q = last.q.as_slice();
+        let bad = learner.command::<rand_chacha::ChaCha8Rng>(&q[..2], q, &[0.0; 2], None, &mut u);
+        assert!(matches!(bad, Err(crate::LearnError::Dimension { .. })));
+        assert_eq!(learner.stats(), before);
+        learner
+            .command::<rand_chacha::ChaCha8Rng>(q, q, &[0.0; 2], None, &mut u)
+            .unwrap();
+        assert!(u.iter().all(|v| v.abs() <= 0.1), "{u:?}");
+        assert_eq!(learner.stats().clipped, before.clipped + 1);
     }
 }

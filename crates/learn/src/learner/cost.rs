@@ -63,7 +63,10 @@ mod tests {
         shrink_target(1.0, &mut ws);
         for (k, b) in before.iter().enumerate() {
             let after: f64 = (0..3).map(|j| ws.a_hat[k * 3 + j] * ws.target[j]).sum();
-            assert!((after - b).abs() < 1e-12, "Â·target changed: {after} vs {b}");
+            assert!(
+                (after - b).abs() < 1e-12,
+                "Â·target changed: {after} vs {b}"
+            );
         }
         // And it is cheaper: the null-space part is gone.
         let n2 = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>();

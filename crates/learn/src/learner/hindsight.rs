@@ -130,7 +130,10 @@ impl Step<'_> {
                 RfEvent::Added {
                     id, copied_from, ..
                 } => {
-                    let center = models.forward.center(id).unwrap_or_else(|| [q, qd].concat());
+                    let center = models
+                        .forward
+                        .center(id)
+                        .unwrap_or_else(|| [q, qd].concat());
                     let now = self.stats.samples;
                     models
                         .locals
@@ -158,9 +161,9 @@ impl Step<'_> {
             &mut ws.u0,
         )?;
         let residual = self.cfg.experimental.residual;
-        for i in 0..self.n {
-            ws.du[i] = u[i] - ws.u0[i];
-            ws.target[i] = if residual { ws.du[i] } else { u[i] };
+        for (i, &ui) in u.iter().enumerate() {
+            ws.du[i] = ui - ws.u0[i];
+            ws.target[i] = if residual { ws.du[i] } else { ui };
         }
         let cutoff = self.cfg.partition.activation_cutoff;
         models.forward.activations(q, qd, cutoff, &mut ws.acts)?;
@@ -200,5 +203,54 @@ impl Step<'_> {
             }
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::learner::fixture;
+    use lwpr::RfId;
+
+    /// Each `Added` event adds exactly one local controller with the field's id, each `Pruned`
+    /// event removes exactly that one: the partition and the controllers stay one to one.
+    #[test]
+    fn partition_events_add_and_remove_exactly_one_controller() {
+        let (mut learner, mut sim, _) = fixture::ready(fixture::config(), 200, 50);
+        let (fwd, locals) = fixture::ids(&learner);
+        assert!(!fwd.is_empty());
+        assert_eq!(fwd, locals);
+        // Prune one field by hand: the next learning step drops its controller only.
+        let gone = fwd[0];
+        assert!(fixture::models(&mut learner)
+            .forward
+            .remove(RfId(gone))
+            .unwrap());
+        fixture::sweep(&mut learner, &mut sim, 1);
+        let (fwd2, locals2) = fixture::ids(&learner);
+        assert_eq!(fwd2, locals2);
+        assert!(!locals2.contains(&gone));
+        assert!(locals2.len() >= locals.len() - 1);
+        // More sweeping adds fields; every new one gets exactly one controller.
+        fixture::sweep(&mut learner, &mut sim, 3000);
+        let (fwd3, locals3) = fixture::ids(&learner);
+        assert!(fwd3.len() > fwd2.len(), "{} vs {}", fwd3.len(), fwd2.len());
+        assert_eq!(fwd3, locals3);
+    }
+
+    /// Every active field gets the sample; an M-step runs after `update_every` of them.
+    #[test]
+    fn m_steps_run_every_update_every_samples() {
+        let mut cfg = fixture::config();
+        cfg.controllers.update_every = 10;
+        let (learner, _, _) = fixture::ready(cfg, 100, 400);
+        let s = learner.stats();
+        // No field was pruned in 1 s, so the controllers' M-steps are all there are.
+        assert_eq!(s.pruned_untrained, 0);
+        let updates: u64 = learner.local_summaries().iter().map(|l| l.updates).sum();
+        assert_eq!(s.m_steps, updates);
+        assert!(s.m_steps > 0, "{s:?}");
+        // A field active in all 501 samples has had at most 501 / 10 M-steps.
+        assert!(learner.local_summaries().iter().all(|l| l.updates <= 50));
+        assert_eq!(s.samples, 501);
     }
 }

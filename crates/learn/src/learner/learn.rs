@@ -91,3 +91,29 @@ impl Learner {
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::learner::fixture;
+    use crate::Learner;
+
+    /// The models are made after `warmup_samples` transitions, and the warm-up is replayed
+    /// into them (every transition counts as a sample once).
+    #[test]
+    fn the_warm_up_becomes_the_models_and_is_replayed() {
+        let mut cfg = fixture::config();
+        cfg.guards.warmup_samples = 50;
+        let mut learner = Learner::new(3, 2, 0.002, cfg).unwrap();
+        let mut sim = fixture::robot();
+        fixture::sweep(&mut learner, &mut sim, 49);
+        assert!(!learner.ready());
+        assert_eq!(learner.stats().samples, 0);
+        assert!(learner.forward_model().is_none());
+        fixture::sweep(&mut learner, &mut sim, 1);
+        assert!(learner.ready());
+        assert_eq!(learner.stats().samples, 50);
+        assert!(learner.n_local_models() > 0);
+        fixture::sweep(&mut learner, &mut sim, 10);
+        assert_eq!(learner.stats().samples, 60);
+    }
+}

@@ -17,6 +17,8 @@ mod command;
 mod cost;
 mod exploration;
 mod features;
+#[cfg(test)]
+pub(crate) mod fixture;
 mod hindsight;
 mod models;
 mod nominal;
@@ -159,7 +161,9 @@ impl Learner {
             return Ok(false);
         };
         let cutoff = self.cfg.partition.activation_cutoff;
-        models.forward.activations(q, qd, cutoff, &mut self.ws.acts)?;
+        models
+            .forward
+            .activations(q, qd, cutoff, &mut self.ws.acts)?;
         Ok(models.blended_gain(&self.features, &self.ws.acts, q, a))
     }
 

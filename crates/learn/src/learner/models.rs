@@ -70,8 +70,15 @@ impl Models {
             )?),
             None => None,
         };
-        let forward =
-            ForwardModel::new(n, m, &cfg.partition.lwpr, vs, &torque, acc, x.forward_uses_q)?;
+        let forward = ForwardModel::new(
+            n,
+            m,
+            &cfg.partition.lwpr,
+            vs,
+            &torque,
+            acc,
+            x.forward_uses_q,
+        )?;
         Ok(Self {
             gravity,
             gravity_static,

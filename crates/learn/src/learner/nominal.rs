@@ -68,3 +68,34 @@ impl Learner {
         gravity_into(self.state.models_mut(), self.gravity_frozen, q, g)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::learner::fixture;
+    use crate::Learner;
+
+    /// Before the warm-up ends `ĝ = 0` and `u0` is the PD pull to rest; after, `u0 − ĝ` is.
+    #[test]
+    fn u0_is_the_learned_gravity_minus_the_pull_to_rest() {
+        let cfg = fixture::config();
+        let nom = cfg.nominal.clone();
+        let (q, qd) = ([0.3, -0.2, 0.1], [0.5, 0.0, -1.0]);
+        let pull: Vec<f64> = (0..3)
+            .map(|i| -(nom.kd[i] * qd[i] + nom.kp[i] * (q[i] - nom.q_rest[i])))
+            .collect();
+        let mut fresh = Learner::new(3, 2, 0.002, cfg.clone()).unwrap();
+        let (mut u0, mut g) = ([0.0; 3], [0.0; 3]);
+        assert!(!fresh.nominal(&q, &qd, &mut u0).unwrap());
+        assert_eq!(u0.to_vec(), pull);
+        let (mut learner, _, last) = fixture::ready(cfg, 300, 0);
+        let q = last.q.as_slice();
+        assert!(learner.nominal(q, &qd, &mut u0).unwrap());
+        assert!(learner.gravity(q, &mut g).unwrap());
+        for i in 0..3 {
+            let pull = -(nom.kd[i] * qd[i] + nom.kp[i] * (q[i] - nom.q_rest[i]));
+            assert!((u0[i] - (g[i] + pull)).abs() < 1e-12);
+        }
+        // Gravity is learnt: the static pose needs torque, so ĝ is far from zero.
+        assert!(g.iter().any(|v| v.abs() > 1.0), "{g:?}");
+    }
+}

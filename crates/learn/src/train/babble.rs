@@ -110,3 +110,25 @@ fn uniform(rng: &mut ChaCha8Rng, lo: f64, hi: f64) -> f64 {
         lo
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::min_jerk;
+
+    /// The move starts and ends at rest at its ends, passes the midpoint at half time, and its
+    /// velocity is the derivative of its position.
+    #[test]
+    fn minimum_jerk_moves_start_and_end_at_rest() {
+        let (a, b, total) = (0.3, -0.5, 1.2);
+        assert_eq!(min_jerk(a, b, 0.0, total), (a, 0.0));
+        assert_eq!(min_jerk(a, b, total, total), (b, 0.0));
+        assert_eq!(min_jerk(a, b, 5.0, total), (b, 0.0));
+        assert!((min_jerk(a, b, total / 2.0, total).0 - (a + b) / 2.0).abs() < 1e-15);
+        for k in 1..100 {
+            let t = total * k as f64 / 100.0;
+            let h = 1e-6;
+            let fd = (min_jerk(a, b, t + h, total).0 - min_jerk(a, b, t - h, total).0) / (2.0 * h);
+            assert!((fd - min_jerk(a, b, t, total).1).abs() < 1e-6);
+        }
+    }
+}

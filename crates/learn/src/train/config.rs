@@ -113,7 +113,9 @@ impl TrainConfig {
             ("babble.spread", b.spread.is_none_or(finite_pos)),
             (
                 "babble.move_time",
-                b.move_time[0] > 0.0 && b.move_time[0] <= b.move_time[1] && b.move_time[1].is_finite(),
+                b.move_time[0] > 0.0
+                    && b.move_time[0] <= b.move_time[1]
+                    && b.move_time[1].is_finite(),
             ),
             ("babble.gain_scale", finite_pos(b.gain_scale)),
             ("babble.noise", finite_nonneg(b.noise)),

@@ -40,6 +40,22 @@ pub struct Progress {
     pub max_command_step: f64,
 }
 
+impl Progress {
+    /// The progress of a run that has not started: babbling, nothing learned.
+    pub fn start() -> Self {
+        Self {
+            sim_minutes: 0.0,
+            phase: Phase::Babbling,
+            n_local_models: 0,
+            n_trained: 0,
+            episodes: 0,
+            aborted_episodes: 0,
+            eval: None,
+            max_command_step: 0.0,
+        }
+    }
+}
+
 /// Receives a training run's progress.
 pub trait Observer {
     /// After each evaluation (`progress.eval` is the new one).

@@ -2,7 +2,7 @@
 //! the clock, the evaluation schedule and the run's counters. Its phases are in `babble.rs` and
 //! `on_policy.rs`; [`Trainer::run`] reads as the list of them.
 
-use super::observer::{Observer, Phase, Progress};
+use super::observer::{Observer, Progress};
 use super::TrainConfig;
 use crate::error::{LearnError, Result};
 use crate::eval::EvalResult;
@@ -122,16 +122,7 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
             eval_steps,
             learning: true,
             curve: Vec::new(),
-            progress: Progress {
-                sim_minutes: 0.0,
-                phase: Phase::Babbling,
-                n_local_models: 0,
-                n_trained: 0,
-                episodes: 0,
-                aborted_episodes: 0,
-                eval: None,
-                max_command_step: 0.0,
-            },
+            progress: Progress::start(),
             max_step: 0.0,
             wall,
         })
@@ -219,5 +210,76 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
             stats: self.learner.stats(),
             n_local_models: self.learner.n_local_models(),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Trainer;
+    use crate::learner::fixture;
+    use crate::train::{BabbleConfig, Observer, Phase, Progress, TrainConfig};
+    use crate::Learner;
+    use osrl_control::TrajectoryConfig;
+    use osrl_dynamics::robots;
+
+    #[derive(Default)]
+    struct Log {
+        evaluations: Vec<(f64, Phase)>,
+        episodes: u64,
+    }
+    impl Observer for Log {
+        fn evaluated(&mut self, p: &Progress) {
+            self.evaluations.push((p.sim_minutes, p.phase));
+        }
+        fn episode_ended(&mut self, _: &Progress) {
+            self.episodes += 1;
+        }
+    }
+
+    /// The evaluations follow the schedule (and one at the end, not twice), the observer sees
+    /// both phases, and an episode whose error exceeds `reset_error` is counted as aborted.
+    #[test]
+    fn the_schedule_phases_and_aborts_are_reported() {
+        let model = robots::planar3();
+        let traj = TrajectoryConfig::default().build(&model).unwrap();
+        let mut sim = fixture::robot();
+        let mut learner = Learner::new(3, 2, 0.002, fixture::config()).unwrap();
+        let cfg = TrainConfig {
+            minutes: 0.7,
+            eval_every_minutes: 0.15,
+            // Tiny: every on-policy episode from rest aborts at once (the path starts elsewhere).
+            reset_error: 1e-9,
+            babble: BabbleConfig {
+                minutes: 0.4,
+                ..BabbleConfig::default()
+            },
+            ..TrainConfig::default()
+        };
+        let axes = model.task_axes().to_vec();
+        let mut evaluate = |_: &mut Learner| Ok(Default::default());
+        let mut log = Log::default();
+        let summary = Trainer::new(
+            &mut sim,
+            &mut learner,
+            &traj,
+            &axes,
+            &cfg,
+            &mut evaluate,
+            &mut log,
+        )
+        .unwrap()
+        .run()
+        .unwrap();
+        let minutes: Vec<f64> = log.evaluations.iter().map(|e| e.0).collect();
+        assert_eq!(minutes.len(), 5, "{minutes:?}");
+        assert!((minutes[0] - 0.15).abs() < 1e-9 && (minutes[4] - 0.7).abs() < 1e-9);
+        assert_eq!(log.evaluations[0].1, Phase::Babbling);
+        assert_eq!(log.evaluations[4].1, Phase::OnPolicy);
+        assert!(summary.episodes > 0, "{summary:?}");
+        assert_eq!(summary.aborted_episodes, summary.episodes);
+        assert_eq!(log.episodes, summary.episodes);
+        assert_eq!(summary.learning_curve.len(), 5);
+        // The learner's ĝ is frozen once on-policy learning starts.
+        assert!(learner.gravity_frozen());
     }
 }
