@@ -1,5 +1,5 @@
-//! Rigid-body dynamics of serial arms with revolute joints, the built-in robots, URDF import and
-//! export, and the simulated robot.
+//! Rigid-body dynamics of serial arms with revolute and prismatic joints, the built-in robots,
+//! URDF import and export, and the simulated robot.
 //!
 //! Design (after Pinocchio): an immutable [`Model`] and a preallocated [`Data`] workspace; one
 //! algorithm per module named by its acronym ([`rnea`], [`crba`], [`aba`]); the hot calls never
@@ -43,7 +43,10 @@ pub use error::{check_finite, check_vec, DynamicsError, Result};
 pub use inertia::Inertia;
 pub use jacobian::{jacobian, jacobian_from_fk};
 pub use kinematics::{forward_kinematics, kinematics};
-pub use model::{Friction, JointLimits, Link, Model, ModelSpec, GRAVITY};
+pub use model::{
+    Friction, JointKind, JointLimits, Link, LockedJoint, Model, ModelSpec, UrdfImport, GRAVITY,
+    MAX_DOF,
+};
 pub use rnea::{gravity, nonlinear_effects, rnea};
 pub use sim::{Measurement, Robot, SimConfig, SimRobot};
 pub use spatial::Pose;
