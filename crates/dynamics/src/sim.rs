@@ -65,14 +65,15 @@ pub enum Integrator {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum FrictionScheme {
-    /// Explicit with the integrator while the friction is not stiff for the step (`h λ̂ ≤ 0.5`,
-    /// checked every control period), implicit otherwise.
+    /// The configured integrator while the friction is not stiff for the step (`h λ̂ ≤`
+    /// [`STIFF_LIMIT`], checked every control period), implicit otherwise.
     #[default]
     Auto,
-    /// Always with the explicit integrator (stiff friction then diverges).
+    /// Always the configured integrator. A model whose friction is stiff for the step at its
+    /// start posture is refused, naming the joint and its friction parameters.
     Explicit,
-    /// Always implicit: half a backward-Euler friction step, the integrator without friction,
-    /// another half friction step (Strang splitting), per substep.
+    /// Always implicit: each substep is semi-implicit Euler with backward-Euler friction
+    /// (first order, whatever `integrator` says; a sticking joint stays stuck).
     Implicit,
 }
 

@@ -6,10 +6,11 @@
 //! rates of `M⁻¹ diag(σ)`, whose largest eigenvalue is at most `λ̂ = Σ σᵢ (M⁻¹)ᵢᵢ` (the trace of
 //! the similar matrix `diag(σ)^½ M⁻¹ diag(σ)^½`). An explicit step is stable for `h λ̂` well below
 //! RK4's limit of 2.79 on the negative real axis; beyond [`STIFF_LIMIT`] the friction is instead
-//! integrated implicitly: the velocity `v` after a friction step of length `k` solves
-//! `M (v − q̇) + k τ_f(v) = 0`, the minimum of the strictly convex
-//! `Φ(v) = ½ (v − q̇)ᵀ M (v − q̇) + k Σ φᵢ(vᵢ)`, `φᵢ' = τ_f,ᵢ`, found by Newton's method with a
-//! backtracking line search on `Φ` (so it converges from any start, for any stiffness).
+//! integrated implicitly (semi-implicit Euler): with `v* = q̇ + h q̈_rigid(q, q̇)` the new velocity
+//! `v` solves `M (v − v*) + h τ_f(v) = 0`, the minimum of the strictly convex
+//! `Φ(v) = ½ (v − v*)ᵀ M (v − v*) + h Σ φᵢ(vᵢ)`, `φᵢ' = τ_f,ᵢ`, found by Newton's method with a
+//! backtracking line search on `Φ` (so it converges from any start, for any stiffness), and
+//! `q ← q + h v`.
 
 use crate::crba::crba;
 use crate::data::Data;
@@ -31,6 +32,8 @@ const MAX_NEWTON: usize = 60;
 pub(crate) struct FrictionStep {
     /// Largest friction slope `σᵢ` per joint (N·m·s/rad or N·s/m).
     sigma: Vec<f64>,
+    /// The terms `σᵢ (M⁻¹)ᵢᵢ` of the last rate (1/s).
+    terms: Vec<f64>,
     mass: DMatrix<f64>,
     chol: DMatrix<f64>,
     v: DVector<f64>,
@@ -139,6 +142,7 @@ impl FrictionStep {
                 .iter()
                 .map(|l| l.friction.viscous + l.friction.coulomb / l.friction.coulomb_velocity)
                 .collect(),
+            terms: vec![0.0; n],
             mass: DMatrix::zeros(n, n),
             chol: DMatrix::zeros(n, n),
             v: z.clone(),
@@ -164,17 +168,24 @@ impl FrictionStep {
                 value: 0.0,
             });
         }
-        let mut rate = 0.0;
         for (i, &s) in self.sigma.iter().enumerate() {
+            self.terms[i] = 0.0;
             if s > 0.0 {
-                // (M⁻¹)ᵢᵢ = |L⁻¹ eᵢ|².
+                // (M⁻¹)ᵢᵢ from one solve with the unit vector eᵢ.
                 self.dv.fill(0.0);
                 self.dv[i] = 1.0;
                 solve(&self.chol, &mut self.dv);
-                rate += s * self.dv[i];
+                self.terms[i] = s * self.dv[i];
             }
         }
-        Ok(rate)
+        Ok(self.terms.iter().sum())
+    }
+
+    /// The joint with the largest term of the last [`Self::rate`].
+    pub fn stiffest(&self) -> usize {
+        (0..self.terms.len())
+            .max_by(|&a, &b| self.terms[a].total_cmp(&self.terms[b]))
+            .unwrap_or(0)
     }
 
     /// Replaces `qd` by the velocity after an implicit friction step of length `k` (s) at the

@@ -83,6 +83,7 @@ impl SimRobot {
         };
         let zeros = vec![0.0; n];
         sim.reset(&q_start, &zeros)?;
+        sim.check_explicit_friction()?;
         Ok(sim)
     }
 
@@ -155,6 +156,34 @@ impl SimRobot {
             m.xdd[k] += noise(rng, sn.xdd);
         }
         Ok(())
+    }
+
+    /// With `FrictionScheme::Explicit`, refuses friction that is stiff for the step at the start
+    /// posture (the explicit integrator would diverge), naming the joint and its parameters.
+    fn check_explicit_friction(&mut self) -> Result<()> {
+        if self.cfg.friction != FrictionScheme::Explicit || !self.friction.any() {
+            return Ok(());
+        }
+        let h = self.cfg.control_period / self.cfg.substeps as f64;
+        let rate = self
+            .friction
+            .rate(&self.model, &mut self.data, self.q.as_slice())?;
+        if h * rate <= STIFF_LIMIT {
+            return Ok(());
+        }
+        let l = &self.model.links()[self.friction.stiffest()];
+        let f = &l.friction;
+        Err(DynamicsError::InvalidConfig(format!(
+            "friction = \"explicit\": joint '{}' has friction (viscous {}, coulomb {} over \
+             coulomb_velocity {}) too stiff for the step of {h:e} s (h·λ̂ = {:.3} > {STIFF_LIMIT}); \
+             use friction = \"auto\" or \"implicit\", or at least {} substeps",
+            l.joint_name,
+            f.viscous,
+            f.coulomb,
+            f.coulomb_velocity,
+            h * rate,
+            (self.cfg.control_period * rate / STIFF_LIMIT).ceil()
+        )))
     }
 
     /// Whether this control period integrates the friction implicitly (`FrictionScheme`).
