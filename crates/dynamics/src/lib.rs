@@ -68,3 +68,8 @@ pub fn compute_all(model: &Model, data: &mut Data, q: &[f64], qd: &[f64]) -> Res
     data.h += &data.friction;
     Ok(())
 }
+
+/// The README's example compiles and runs (`cargo test --doc`).
+#[doc = include_str!("../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;
