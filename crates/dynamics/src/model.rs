@@ -3,7 +3,7 @@
 
 use crate::error::{check_finite, DynamicsError, Result};
 use crate::inertia::Inertia;
-use crate::spatial::{axis_angle, Force, Motion, Pose};
+use crate::spatial::{rotate_about, Force, Motion, Pose};
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
@@ -112,7 +112,7 @@ impl Link {
     pub fn joint_pose(&self, q: f64) -> Pose {
         match self.kind {
             JointKind::Revolute => Pose::new(
-                self.origin.rot * axis_angle(&self.axis, q),
+                rotate_about(&self.origin.rot, &self.axis, q),
                 self.origin.trans,
             ),
             JointKind::Prismatic => Pose::new(
