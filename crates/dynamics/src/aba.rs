@@ -51,6 +51,26 @@ pub fn forward_dynamics<'a>(
     Ok(&data.qdd)
 }
 
+/// `U = I^A S` (angular and linear parts) and `d = Sᵀ U`: the columns of `I^A` along the joint's
+/// subspace.
+#[inline]
+fn joint_columns(
+    kind: JointKind,
+    ia: &ArticulatedInertia,
+    s: &nalgebra::Vector3<f64>,
+) -> (nalgebra::Vector3<f64>, nalgebra::Vector3<f64>, f64) {
+    match kind {
+        JointKind::Revolute => {
+            let ua = ia.a * s;
+            (ua, ia.b.tr_mul(s), s.dot(&ua))
+        }
+        JointKind::Prismatic => {
+            let ul = ia.c * s;
+            (ia.b * s, ul, s.dot(&ul))
+        }
+    }
+}
+
 /// The three ABA passes on the joint poses in `data`, with the net joint torques in `data.u`.
 pub(crate) fn aba_passes(model: &Model, data: &mut Data, qd: &[f64]) -> Result<()> {
     let n = model.nq();
@@ -70,17 +90,7 @@ pub(crate) fn aba_passes(model: &Model, data: &mut Data, qd: &[f64]) -> Result<(
     for i in (0..n).rev() {
         let s = &links[i].axis;
         let ia = data.ia[i];
-        // U = I^A S and d = Sᵀ U: the columns of I^A along the joint's subspace.
-        let (ua, ul, d) = match links[i].kind {
-            JointKind::Revolute => {
-                let ua = ia.a * s;
-                (ua, ia.b.tr_mul(s), s.dot(&ua))
-            }
-            JointKind::Prismatic => {
-                let ul = ia.c * s;
-                (ia.b * s, ul, s.dot(&ul))
-            }
-        };
+        let (ua, ul, d) = joint_columns(links[i].kind, &ia, s);
         if !(d > 0.0) {
             return Err(DynamicsError::Singular { joint: i, value: d });
         }

@@ -38,17 +38,54 @@ pub(super) fn build(
     tip: usize,
     import: UrdfImport,
 ) -> Result<Model> {
-    let dofs: Vec<usize> = tree
-        .path_to(raw, tip)
-        .into_iter()
+    let dofs = degrees_of_freedom(raw, tree, roles, tip)?;
+    let (inertia, origin, ee) = lump(raw, tree, roles, tip, &dofs)?;
+    let links = dofs
+        .iter()
+        .zip(origin)
+        .zip(&inertia[1..])
+        .map(|((&j, origin), inertia)| dof_link(raw, j, origin, *inertia))
+        .collect::<Result<Vec<Link>>>()?;
+    let n = links.len();
+    let mid: Vec<f64> = links
+        .iter()
+        .map(|l| {
+            if l.limits.q_min.is_finite() && l.limits.q_max.is_finite() {
+                0.5 * (l.limits.q_min + l.limits.q_max)
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    let mut spec = ModelSpec {
+        name: raw.name.clone(),
+        links,
+        ee_offset: ee,
+        gravity: GRAVITY,
+        task_axes: vec![0, 1, 2],
+        q_start: mid.clone(),
+        q_rest: mid,
+        kp: vec![10.0; n],
+        kd: vec![1.0; n],
+        urdf: Some(import),
+    };
+    spec.task_axes = reachable_axes(&Model::new(spec.clone())?);
+    Model::new(spec)
+}
+
+/// The `Role::Dof` joints from the root to the tip: at least one, at most `MAX_DOF`.
+fn degrees_of_freedom(raw: &Raw, tree: &Tree, roles: &[Role], tip: usize) -> Result<Vec<usize>> {
+    let path = tree.path_to(raw, tip);
+    let dofs: Vec<usize> = path
+        .iter()
+        .copied()
         .filter(|&j| roles[j] == Role::Dof)
         .collect();
     if dofs.is_empty() {
-        let locked: Vec<&str> = tree
-            .path_to(raw, tip)
-            .into_iter()
-            .filter(|&j| matches!(roles[j], Role::Locked(_)))
-            .map(|j| raw.joints[j].name.as_str())
+        let locked: Vec<&str> = path
+            .iter()
+            .filter(|&&j| matches!(roles[j], Role::Locked(_)))
+            .map(|&j| raw.joints[j].name.as_str())
             .collect();
         let hint = if locked.is_empty() {
             String::new()
@@ -70,14 +107,26 @@ pub(super) fn build(
             crate::model::MAX_DOF
         ));
     }
+    Ok(dofs)
+}
+
+/// One iterative walk over the tree: the lumped inertia of every body (body 0 is the fixed base,
+/// body k + 1 moves with DOF k), each DOF's joint origin in the previous body's frame, and the
+/// tip's position in the last body's frame.
+fn lump(
+    raw: &Raw,
+    tree: &Tree,
+    roles: &[Role],
+    tip: usize,
+    dofs: &[usize],
+) -> Result<(Vec<Inertia>, Vec<Pose>, Vector3<f64>)> {
     let mut body_of_dof = vec![usize::MAX; raw.joints.len()];
     for (k, &j) in dofs.iter().enumerate() {
         body_of_dof[j] = k + 1;
     }
-    // Body 0 is the fixed base; body k + 1 moves with DOF k.
     let mut inertia = vec![Inertia::zero(); dofs.len() + 1];
     let mut origin = vec![Pose::identity(); dofs.len()];
-    let mut ee = None;
+    let mut ee = Vector3::zeros();
     let mut stack = vec![(tree.root, 0usize, Pose::identity())];
     while let Some((l, body, pose)) = stack.pop() {
         if body > 0 {
@@ -88,7 +137,7 @@ pub(super) fn build(
             inertia[body] = inertia[body].add(&link.inertia.to_parent(&pose));
         }
         if l == tip {
-            ee = Some(pose.trans);
+            ee = pose.trans;
         }
         for &j in tree.child_joints(l) {
             let joint = &raw.joints[j];
@@ -97,45 +146,12 @@ pub(super) fn build(
                 origin[k - 1] = pose.compose(&joint.origin);
                 stack.push((joint.child, k, Pose::identity()));
             } else {
-                stack.push((
-                    joint.child,
-                    body,
-                    pose.compose(&rigid_pose(joint, &roles[j])),
-                ));
+                let child = pose.compose(&rigid_pose(joint, &roles[j]));
+                stack.push((joint.child, body, child));
             }
         }
     }
-    let links = dofs
-        .iter()
-        .zip(origin)
-        .zip(&inertia[1..])
-        .map(|((&j, origin), inertia)| dof_link(raw, j, origin, *inertia))
-        .collect::<Result<Vec<Link>>>()?;
-    let n = links.len();
-    let mid: Vec<f64> = links
-        .iter()
-        .map(|l| {
-            if l.limits.q_min.is_finite() && l.limits.q_max.is_finite() {
-                0.5 * (l.limits.q_min + l.limits.q_max)
-            } else {
-                0.0
-            }
-        })
-        .collect();
-    let mut spec = ModelSpec {
-        name: raw.name.clone(),
-        links,
-        ee_offset: ee.expect("the tip is below the last degree of freedom"),
-        gravity: GRAVITY,
-        task_axes: vec![0, 1, 2],
-        q_start: mid.clone(),
-        q_rest: mid,
-        kp: vec![10.0; n],
-        kd: vec![1.0; n],
-        urdf: Some(import),
-    };
-    spec.task_axes = reachable_axes(&Model::new(spec.clone())?);
-    Model::new(spec)
+    Ok((inertia, origin, ee))
 }
 
 /// A degree of freedom as a model link: kind, axis, limits (a positive effort required) and

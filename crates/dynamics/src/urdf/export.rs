@@ -26,6 +26,32 @@ fn origin(xyz: &Vector3<f64>, rot: &Matrix3<f64>) -> String {
     )
 }
 
+/// A link with its `<inertial>` (centre of mass and inertia about it).
+fn write_link(s: &mut String, l: &crate::model::Link) {
+    let i = &l.inertia;
+    let ic = i.inertia_com();
+    let _ = writeln!(s, "  <link name=\"{}\">", l.name);
+    let _ = writeln!(s, "    <inertial>");
+    let _ = writeln!(
+        s,
+        "      <origin xyz=\"{}\" rpy=\"0 0 0\"/>",
+        vec3(&i.com())
+    );
+    let _ = writeln!(s, "      <mass value=\"{}\"/>", num(i.mass));
+    let _ = writeln!(
+        s,
+        "      <inertia ixx=\"{}\" ixy=\"{}\" ixz=\"{}\" iyy=\"{}\" iyz=\"{}\" izz=\"{}\"/>",
+        num(ic[(0, 0)]),
+        num(ic[(0, 1)]),
+        num(ic[(0, 2)]),
+        num(ic[(1, 1)]),
+        num(ic[(1, 2)]),
+        num(ic[(2, 2)])
+    );
+    let _ = writeln!(s, "    </inertial>");
+    let _ = writeln!(s, "  </link>");
+}
+
 /// The model as a URDF document. Gravity is not part of URDF: the model's is assumed to be the
 /// URDF convention (9.81 m/s² along −z). Postures, gains and task axes are not exported. A model
 /// with a link inertia that no rigid body has (identified base parameters) gets the element
@@ -46,28 +72,7 @@ pub fn to_urdf(model: &Model) -> String {
     let _ = writeln!(s, "  <link name=\"base_link\"/>");
     let mut parent = "base_link".to_string();
     for l in &spec.links {
-        let i = &l.inertia;
-        let ic = i.inertia_com();
-        let _ = writeln!(s, "  <link name=\"{}\">", l.name);
-        let _ = writeln!(s, "    <inertial>");
-        let _ = writeln!(
-            s,
-            "      <origin xyz=\"{}\" rpy=\"0 0 0\"/>",
-            vec3(&i.com())
-        );
-        let _ = writeln!(s, "      <mass value=\"{}\"/>", num(i.mass));
-        let _ = writeln!(
-            s,
-            "      <inertia ixx=\"{}\" ixy=\"{}\" ixz=\"{}\" iyy=\"{}\" iyz=\"{}\" izz=\"{}\"/>",
-            num(ic[(0, 0)]),
-            num(ic[(0, 1)]),
-            num(ic[(0, 2)]),
-            num(ic[(1, 1)]),
-            num(ic[(1, 2)]),
-            num(ic[(2, 2)])
-        );
-        let _ = writeln!(s, "    </inertial>");
-        let _ = writeln!(s, "  </link>");
+        write_link(&mut s, l);
         let lim = &l.limits;
         let limited = lim.q_min.is_finite() && lim.q_max.is_finite();
         let kind = match (l.kind, limited) {

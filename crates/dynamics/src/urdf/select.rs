@@ -204,10 +204,15 @@ pub(super) fn roles(
             reasons[j] = Some(format!("mimics '{}'", m.leader));
         }
     }
-    let locked = raw
-        .joints
+    let locked = locked_list(raw, &roles, reasons);
+    Ok((roles, locked))
+}
+
+/// The locked joints, in file order, with their positions and reasons.
+fn locked_list(raw: &Raw, roles: &[Role], reasons: Vec<Option<String>>) -> Vec<LockedJoint> {
+    raw.joints
         .iter()
-        .zip(&roles)
+        .zip(roles)
         .zip(reasons)
         .filter_map(|((joint, role), reason)| match role {
             Role::Locked(value) => Some(LockedJoint {
@@ -217,8 +222,7 @@ pub(super) fn roles(
             }),
             _ => None,
         })
-        .collect();
-    Ok((roles, locked))
+        .collect()
 }
 
 /// `below[l]`: link `l` lies strictly beyond `tip` (in its subtree, not the tip itself).

@@ -45,31 +45,12 @@ impl Tree {
             children[fill[joint.parent]] = j;
             fill[joint.parent] += 1;
         }
-        let roots: Vec<usize> = (0..n).filter(|&l| parent_joint[l].is_none()).collect();
-        if n == 0 {
-            return err("the file has no <link> element".into());
-        }
-        if roots.is_empty() {
-            return err(
-                "no root link: every link is the child of a joint (the joints form a cycle)".into(),
-            );
-        }
-        if roots.len() != 1 {
-            let mut names: Vec<&str> = roots.iter().map(|&l| raw.links[l].name.as_str()).collect();
-            names.sort_unstable();
-            let shown = names.len().min(5);
-            let more = if names.len() > shown { ", …" } else { "" };
-            return err(format!(
-                "expected one root link, found {} ({}{more})",
-                names.len(),
-                names[..shown].join(", ")
-            ));
-        }
+        let root = the_root(raw, &parent_joint)?;
         let mut tree = Tree {
             parent_joint,
             start,
             children,
-            root: roots[0],
+            root,
             order: Vec::with_capacity(n),
             depth: vec![0; n],
         };
@@ -83,17 +64,7 @@ impl Tree {
             }
         }
         if tree.order.len() != n {
-            let mut seen = vec![false; n];
-            for &l in &tree.order {
-                seen[l] = true;
-            }
-            let lost = (0..n)
-                .find(|&l| !seen[l])
-                .map_or("", |l| raw.links[l].name.as_str());
-            return err(format!(
-                "link '{lost}' cannot be reached from the root link '{}': the joints form a cycle",
-                raw.links[tree.root].name
-            ));
+            return err(unreachable(raw, &tree));
         }
         Ok(tree)
     }
@@ -114,4 +85,45 @@ impl Tree {
         path.reverse();
         path
     }
+}
+
+/// The one link that is no joint's child; errors for none (a cycle) or several.
+fn the_root(raw: &Raw, parent_joint: &[Option<usize>]) -> Result<usize> {
+    if raw.links.is_empty() {
+        return err("the file has no <link> element".into());
+    }
+    let roots: Vec<usize> = (0..raw.links.len())
+        .filter(|&l| parent_joint[l].is_none())
+        .collect();
+    match roots.len() {
+        1 => Ok(roots[0]),
+        0 => {
+            err("no root link: every link is the child of a joint (the joints form a cycle)".into())
+        }
+        k => {
+            let mut names: Vec<&str> = roots.iter().map(|&l| raw.links[l].name.as_str()).collect();
+            names.sort_unstable();
+            let shown = k.min(5);
+            let more = if k > shown { ", …" } else { "" };
+            err(format!(
+                "expected one root link, found {k} ({}{more})",
+                names[..shown].join(", ")
+            ))
+        }
+    }
+}
+
+/// The error for links that the walk from the root did not reach (they form a cycle).
+fn unreachable(raw: &Raw, tree: &Tree) -> String {
+    let mut seen = vec![false; raw.links.len()];
+    for &l in &tree.order {
+        seen[l] = true;
+    }
+    let lost = (0..raw.links.len())
+        .find(|&l| !seen[l])
+        .map_or("", |l| raw.links[l].name.as_str());
+    format!(
+        "link '{lost}' cannot be reached from the root link '{}': the joints form a cycle",
+        raw.links[tree.root].name
+    )
 }

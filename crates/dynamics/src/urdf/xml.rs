@@ -100,6 +100,26 @@ pub(super) fn read(text: &str) -> Result<Raw> {
             .children()
             .any(|c| c.has_tag_name("osrl") && c.attribute("identified_inertias") == Some("true")),
     };
+    read_links(robot, &mut raw)?;
+    for j in robot.children().filter(|c| c.has_tag_name("joint")) {
+        if raw.joints.len() == MAX_JOINTS {
+            return err(format!("more than {MAX_JOINTS} joints"));
+        }
+        let joint = joint(j, &raw.link_index)?;
+        if raw
+            .joint_index
+            .insert(joint.name.clone(), raw.joints.len())
+            .is_some()
+        {
+            return err(format!("joint '{}' is defined twice", joint.name));
+        }
+        raw.joints.push(joint);
+    }
+    Ok(raw)
+}
+
+/// Every `<link>`: name (unique) and inertial.
+fn read_links(robot: Node, raw: &mut Raw) -> Result<()> {
     for l in robot.children().filter(|c| c.has_tag_name("link")) {
         let Some(name) = l.attribute("name") else {
             return err("a <link> has no name".into());
@@ -121,21 +141,7 @@ pub(super) fn read(text: &str) -> Result<Raw> {
             inertia_com,
         });
     }
-    for j in robot.children().filter(|c| c.has_tag_name("joint")) {
-        if raw.joints.len() == MAX_JOINTS {
-            return err(format!("more than {MAX_JOINTS} joints"));
-        }
-        let joint = joint(j, &raw.link_index)?;
-        if raw
-            .joint_index
-            .insert(joint.name.clone(), raw.joints.len())
-            .is_some()
-        {
-            return err(format!("joint '{}' is defined twice", joint.name));
-        }
-        raw.joints.push(joint);
-    }
-    Ok(raw)
+    Ok(())
 }
 
 /// One `<joint>`: type, links, origin, and for movable joints axis, limit, dynamics and mimic.
@@ -177,24 +183,29 @@ fn joint(j: Node, links: &HashMap<String, usize>) -> Result<RawJoint> {
         friction: Friction::default(),
         mimic: None,
     };
-    if matches!(kind, Kind::Fixed | Kind::Multi) {
-        return Ok(joint);
+    if !matches!(kind, Kind::Fixed | Kind::Multi) {
+        movable(j, &mut joint, &ctx, type_name)?;
     }
+    Ok(joint)
+}
+
+/// The axis, `<limit>`, `<dynamics>` and `<mimic>` of a revolute, continuous or prismatic joint.
+fn movable(j: Node, joint: &mut RawJoint, ctx: &str, type_name: &str) -> Result<()> {
     if let Some(a) = child(j, "axis") {
-        joint.axis = Vector3::from(numbers(a, "xyz", Some([1.0, 0.0, 0.0]), &ctx)?);
+        joint.axis = Vector3::from(numbers(a, "xyz", Some([1.0, 0.0, 0.0]), ctx)?);
     }
     if joint.axis.norm() < 1e-12 {
         return err(format!("{ctx}: zero <axis>"));
     }
-    joint.limit = child(j, "limit").map(|l| limit(l, &ctx)).transpose()?;
-    if joint.limit.is_none() && kind != Kind::Continuous {
+    joint.limit = child(j, "limit").map(|l| limit(l, ctx)).transpose()?;
+    if joint.limit.is_none() && joint.kind != Kind::Continuous {
         return err(format!(
             "{ctx}: a {type_name} joint needs a <limit> element"
         ));
     }
     if let Some(d) = child(j, "dynamics") {
-        let [damping] = numbers(d, "damping", Some([0.0]), &ctx)?;
-        let [coulomb] = numbers(d, "friction", Some([0.0]), &ctx)?;
+        let [damping] = numbers(d, "damping", Some([0.0]), ctx)?;
+        let [coulomb] = numbers(d, "friction", Some([0.0]), ctx)?;
         if damping < 0.0 || coulomb < 0.0 {
             return err(format!("{ctx}: negative <dynamics> coefficient"));
         }
@@ -204,15 +215,15 @@ fn joint(j: Node, links: &HashMap<String, usize>) -> Result<RawJoint> {
         let leader = m
             .attribute("joint")
             .ok_or_else(|| DynamicsError::Urdf(format!("{ctx}: <mimic> lacks 'joint'")))?;
-        let [multiplier] = numbers(m, "multiplier", Some([1.0]), &ctx)?;
-        let [offset] = numbers(m, "offset", Some([0.0]), &ctx)?;
+        let [multiplier] = numbers(m, "multiplier", Some([1.0]), ctx)?;
+        let [offset] = numbers(m, "offset", Some([0.0]), ctx)?;
         joint.mimic = Some(Mimic {
             leader: leader.to_string(),
             multiplier,
             offset,
         });
     }
-    Ok(joint)
+    Ok(())
 }
 
 fn limit(l: Node, ctx: &str) -> Result<Limit> {
