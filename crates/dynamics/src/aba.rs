@@ -1,9 +1,9 @@
 //! Articulated-body algorithm: forward dynamics `q̈ = M⁻¹(τ − C q̇ − g)` in O(n).
 
-use crate::data::{joint_motion, update_joint_poses, Data};
+use crate::data::{update_joint_poses, Data};
 use crate::error::{check_vec, DynamicsError, Result};
 use crate::inertia::ArticulatedInertia;
-use crate::model::Model;
+use crate::model::{JointKind, Model};
 use crate::spatial::Motion;
 use nalgebra::DVector;
 
@@ -51,6 +51,26 @@ pub fn forward_dynamics<'a>(
     Ok(&data.qdd)
 }
 
+/// `U = I^A S` (angular and linear parts) and `d = Sᵀ U`: the columns of `I^A` along the joint's
+/// subspace.
+#[inline]
+fn joint_columns(
+    kind: JointKind,
+    ia: &ArticulatedInertia,
+    s: &nalgebra::Vector3<f64>,
+) -> (nalgebra::Vector3<f64>, nalgebra::Vector3<f64>, f64) {
+    match kind {
+        JointKind::Revolute => {
+            let ua = ia.a * s;
+            (ua, ia.b.tr_mul(s), s.dot(&ua))
+        }
+        JointKind::Prismatic => {
+            let ul = ia.c * s;
+            (ia.b * s, ul, s.dot(&ul))
+        }
+    }
+}
+
 /// The three ABA passes on the joint poses in `data`, with the net joint torques in `data.u`.
 pub(crate) fn aba_passes(model: &Model, data: &mut Data, qd: &[f64]) -> Result<()> {
     let n = model.nq();
@@ -58,7 +78,7 @@ pub(crate) fn aba_passes(model: &Model, data: &mut Data, qd: &[f64]) -> Result<(
     // Pass 1: velocities, velocity-product accelerations and bias forces.
     let mut v_parent = Motion::default();
     for (i, l) in links.iter().enumerate() {
-        let vj = joint_motion(&l.axis, qd[i]);
+        let vj = l.motion(qd[i]);
         let v = data.joint_pose[i].motion_to_child(&v_parent) + vj;
         data.v[i] = v;
         data.c[i] = v.cross_motion(&vj);
@@ -70,14 +90,12 @@ pub(crate) fn aba_passes(model: &Model, data: &mut Data, qd: &[f64]) -> Result<(
     for i in (0..n).rev() {
         let s = &links[i].axis;
         let ia = data.ia[i];
-        let ua = ia.a * s;
-        let ul = ia.b.tr_mul(s);
-        let d = s.dot(&ua);
+        let (ua, ul, d) = joint_columns(links[i].kind, &ia, s);
         if !(d > 0.0) {
             return Err(DynamicsError::Singular { joint: i, value: d });
         }
         let inv_d = 1.0 / d;
-        let u = data.u[i] - s.dot(&data.pa[i].ang);
+        let u = data.u[i] - links[i].project(&data.pa[i]);
         data.u_ang[i] = ua;
         data.u_lin[i] = ul;
         data.d_inv[i] = inv_d;
@@ -102,7 +120,7 @@ pub(crate) fn aba_passes(model: &Model, data: &mut Data, qd: &[f64]) -> Result<(
         let qdd =
             (data.u[i] - data.u_ang[i].dot(&a.ang) - data.u_lin[i].dot(&a.lin)) * data.d_inv[i];
         data.qdd[i] = qdd;
-        let a = a + joint_motion(&l.axis, qdd);
+        let a = a + l.motion(qdd);
         data.a[i] = a;
         a_parent = a;
     }

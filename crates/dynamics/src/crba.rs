@@ -3,7 +3,6 @@
 use crate::data::{update_joint_poses, Data};
 use crate::error::{check_vec, Result};
 use crate::model::Model;
-use crate::spatial::Force;
 use nalgebra::DMatrix;
 
 /// Mass matrix `M(q)` (symmetric, n×n, kg·m²) into `data.mass`; returns it.
@@ -30,15 +29,11 @@ pub(crate) fn crba_pass(model: &Model, data: &mut Data) {
     }
     for i in 0..n {
         // F = I^c_i S_i, then walk it to the base: M_ij = S_jᵀ F.
-        let axis = links[i].axis;
-        let mut f = Force {
-            ang: data.ic[i].inertia * axis,
-            lin: -data.ic[i].h.cross(&axis),
-        };
-        data.mass[(i, i)] = axis.dot(&f.ang);
+        let mut f = data.ic[i].mul_motion(&links[i].motion(1.0));
+        data.mass[(i, i)] = links[i].project(&f);
         for j in (0..i).rev() {
             f = data.joint_pose[j + 1].force_to_parent(&f);
-            let m = links[j].axis.dot(&f.ang);
+            let m = links[j].project(&f);
             data.mass[(i, j)] = m;
             data.mass[(j, i)] = m;
         }

@@ -2,7 +2,7 @@
 
 use crate::inertia::{ArticulatedInertia, Inertia};
 use crate::model::Model;
-use crate::spatial::{axis_angle, Force, Motion, Pose};
+use crate::spatial::{Force, Motion, Pose};
 use nalgebra::{DMatrix, DVector, Matrix3xX, Vector3};
 
 /// Workspace and results of the dynamics algorithms for one [`Model`]. Create it once with
@@ -89,18 +89,10 @@ impl Data {
     }
 }
 
-/// Joint poses `ᵖX_i(q_i) = origin_i ∘ Rot(axis_i, q_i)` for every link.
+/// Joint poses `ᵖX_i(q_i)` ([`crate::Link::joint_pose`]) for every link.
 #[inline]
 pub(crate) fn update_joint_poses(model: &Model, data: &mut Data, q: &[f64]) {
-    for (i, l) in model.links().iter().enumerate() {
-        data.joint_pose[i] = l
-            .origin
-            .compose(&Pose::new(axis_angle(&l.axis, q[i]), Vector3::zeros()));
+    for ((x, l), &qi) in data.joint_pose.iter_mut().zip(model.links()).zip(q) {
+        *x = l.joint_pose(qi);
     }
-}
-
-/// Joint motion subspace `S_i = (axis, 0)` scaled by `s`.
-#[inline]
-pub(crate) fn joint_motion(axis: &Vector3<f64>, s: f64) -> Motion {
-    Motion::new(axis * s, Vector3::zeros())
 }

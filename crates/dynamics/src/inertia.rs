@@ -95,6 +95,37 @@ impl Inertia {
     }
 }
 
+/// Relative tolerance of [`Inertia::unphysical`] (against the trace): published files round their
+/// values.
+pub const INERTIA_TOLERANCE: f64 = 1e-6;
+
+impl Inertia {
+    /// Why the rotational inertia `ic` about a body's centre of mass is one no rigid body can
+    /// have, or `None`: a principal moment below zero, or principal moments violating the
+    /// triangle inequality `I₁ + I₂ ≥ I₃`, each by more than [`INERTIA_TOLERANCE`] × `scale`
+    /// (kg·m²; the trace for a file's values). Point masses and thin rods (zero moments) pass.
+    pub fn unphysical(ic: &Matrix3<f64>, scale: f64) -> Option<String> {
+        let mut e = nalgebra::SymmetricEigen::new(*ic).eigenvalues;
+        e.as_mut_slice().sort_by(f64::total_cmp);
+        let tol = INERTIA_TOLERANCE * scale;
+        let moments = format!("{:.3e}, {:.3e}, {:.3e} kg·m²", e[0], e[1], e[2]);
+        if !e.iter().all(|x| x.is_finite()) {
+            Some("the inertia is not finite".into())
+        } else if e[0] < -tol {
+            Some(format!(
+                "the inertia is not positive semi-definite (principal moments {moments})"
+            ))
+        } else if e[0] + e[1] < e[2] - tol {
+            Some(format!(
+                "the principal moments {moments} violate the triangle inequality (no mass \
+                 distribution has them)"
+            ))
+        } else {
+            None
+        }
+    }
+}
+
 /// Articulated-body inertia, a symmetric 6×6 map from motion to force kept in 3×3 blocks:
 /// `n = A ω + B v`, `f = Bᵀ ω + C v`.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -1,6 +1,6 @@
 //! Forward kinematics of every link and of the end-effector point, its velocity and `J̇ q̇`.
 
-use crate::data::{joint_motion, update_joint_poses, Data};
+use crate::data::{update_joint_poses, Data};
 use crate::error::{check_vec, Result};
 use crate::model::Model;
 use crate::spatial::Motion;
@@ -37,7 +37,7 @@ pub fn kinematics(model: &Model, data: &mut Data, q: &[f64], qd: &[f64]) -> Resu
     let mut a_parent = Motion::default();
     for (i, l) in model.links().iter().enumerate() {
         let x = &data.joint_pose[i];
-        let vj = joint_motion(&l.axis, qd[i]);
+        let vj = l.motion(qd[i]);
         let v = x.motion_to_child(&v_parent) + vj;
         // Spatial acceleration with q̈ = 0: transported parent acceleration plus v ×ₘ S q̇.
         let a = x.motion_to_child(&a_parent) + v.cross_motion(&vj);

@@ -1,5 +1,5 @@
-//! Rigid-body dynamics of serial arms with revolute joints, the built-in robots, URDF import and
-//! export, and the simulated robot.
+//! Rigid-body dynamics of serial arms with revolute and prismatic joints, the built-in robots,
+//! URDF import and export, and the simulated robot.
 //!
 //! Design (after Pinocchio): an immutable [`Model`] and a preallocated [`Data`] workspace; one
 //! algorithm per module named by its acronym ([`rnea`], [`crba`], [`aba`]); the hot calls never
@@ -43,9 +43,12 @@ pub use error::{check_finite, check_vec, DynamicsError, Result};
 pub use inertia::Inertia;
 pub use jacobian::{jacobian, jacobian_from_fk};
 pub use kinematics::{forward_kinematics, kinematics};
-pub use model::{Friction, JointLimits, Link, Model, ModelSpec, GRAVITY};
+pub use model::{
+    Friction, JointKind, JointLimits, Link, LockedJoint, Model, ModelSpec, UrdfImport, GRAVITY,
+    MAX_DOF,
+};
 pub use rnea::{gravity, nonlinear_effects, rnea};
-pub use sim::{Measurement, Robot, SimConfig, SimRobot};
+pub use sim::{FrictionScheme, Measurement, Robot, SimConfig, SimRobot};
 pub use spatial::Pose;
 
 /// Everything an operational space controller reads, in one call: kinematics (`ee_pos`,
@@ -65,3 +68,8 @@ pub fn compute_all(model: &Model, data: &mut Data, q: &[f64], qd: &[f64]) -> Res
     data.h += &data.friction;
     Ok(())
 }
+
+/// The README's example compiles and runs (`cargo test --doc`).
+#[doc = include_str!("../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;

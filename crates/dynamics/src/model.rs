@@ -1,10 +1,26 @@
-//! The immutable robot model: a serial chain of revolute joints with full spatial inertias.
+//! The immutable robot model: a serial chain of revolute and prismatic joints with full spatial
+//! inertias.
 
 use crate::error::{check_finite, DynamicsError, Result};
 use crate::inertia::Inertia;
-use crate::spatial::Pose;
+use crate::spatial::{rotate_about, Force, Motion, Pose};
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
+
+/// Largest number of joints a [`Model`] accepts: the workspace holds an `n × n` mass matrix and
+/// the controllers factor it, so an absurd size is refused before anything is allocated.
+pub const MAX_DOF: usize = 1024;
+
+/// How a joint moves its link along or about its axis.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum JointKind {
+    /// Rotation by `q` (rad) about the axis; torques in N·m.
+    #[default]
+    Revolute,
+    /// Translation by `q` (m) along the axis; forces in N.
+    Prismatic,
+}
 
 /// Joint friction `τ_f(q̇) = viscous·q̇ + coulomb·tanh(q̇ / coulomb_velocity)` (N·m): viscous plus a
 /// Coulomb term smoothed over `coulomb_velocity` so that the dynamics stay differentiable.
@@ -67,7 +83,8 @@ impl Default for JointLimits {
     }
 }
 
-/// One link of the chain and the revolute joint that moves it.
+/// One link of the chain and the joint that moves it. Units follow the joint's kind: rad, rad/s
+/// and N·m for a revolute joint, m, m/s and N for a prismatic one.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Link {
     /// Link (body) name.
@@ -79,10 +96,72 @@ pub struct Link {
     pub origin: Pose,
     /// Joint axis in the joint frame (unit vector; normalised when the model is built).
     pub axis: Vector3<f64>,
+    /// Revolute or prismatic. Default revolute.
+    #[serde(default)]
+    pub kind: JointKind,
     /// Inertia of the link in the joint frame.
     pub inertia: Inertia,
     pub friction: Friction,
     pub limits: JointLimits,
+}
+
+impl Link {
+    /// Pose of the link's joint frame in its parent at joint position `q`:
+    /// `origin ∘ Rot(axis, q)` or `origin ∘ Trans(axis q)`.
+    #[inline]
+    pub fn joint_pose(&self, q: f64) -> Pose {
+        match self.kind {
+            JointKind::Revolute => Pose::new(
+                rotate_about(&self.origin.rot, &self.axis, q),
+                self.origin.trans,
+            ),
+            JointKind::Prismatic => Pose::new(
+                self.origin.rot,
+                self.origin.trans + self.origin.rot * (self.axis * q),
+            ),
+        }
+    }
+    /// The joint's motion subspace `S` scaled by `s`: `(axis s, 0)` or `(0, axis s)`.
+    #[inline]
+    pub fn motion(&self, s: f64) -> Motion {
+        match self.kind {
+            JointKind::Revolute => Motion::new(self.axis * s, Vector3::zeros()),
+            JointKind::Prismatic => Motion::new(Vector3::zeros(), self.axis * s),
+        }
+    }
+    /// `Sᵀ f`: the part of the spatial force `f` that the joint transmits (N·m or N).
+    #[inline]
+    pub fn project(&self, f: &Force) -> f64 {
+        match self.kind {
+            JointKind::Revolute => self.axis.dot(&f.ang),
+            JointKind::Prismatic => self.axis.dot(&f.lin),
+        }
+    }
+}
+
+/// What the URDF loader decided for a model it built ([`crate::urdf`]); `None` for the built-in
+/// robots. Tools print it so that no choice is silent.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct UrdfImport {
+    /// The end-effector link (the tip): the model's end-effector point is its origin.
+    pub tip: String,
+    /// The rule that chose the tip, in words (e.g. "option tip", "name matches '*tcp*'").
+    pub tip_rule: String,
+    /// Every movable joint of the file that is not a degree of freedom of the model, held rigid.
+    pub locked: Vec<LockedJoint>,
+    /// The file declared identified inertial parameters, so the per-link check was skipped.
+    pub identified_inertias: bool,
+}
+
+/// A movable URDF joint that the loader held rigid, its position and why.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct LockedJoint {
+    pub name: String,
+    /// Position it is held at (rad or m).
+    pub value: f64,
+    /// The rule that locked it, in words (e.g. "beyond the tip", "finger/gripper name").
+    pub reason: String,
 }
 
 /// Everything that defines a robot; [`Model::new`] validates it once.
@@ -104,6 +183,9 @@ pub struct ModelSpec {
     /// Joint PD gains: stiffness (N·m/rad) and damping (N·m·s/rad).
     pub kp: Vec<f64>,
     pub kd: Vec<f64>,
+    /// What the URDF loader chose (tip, locked joints), if the model came from a URDF.
+    #[serde(default)]
+    pub urdf: Option<UrdfImport>,
 }
 
 /// Standard gravity along −z (m/s²), the URDF/ROS convention.
@@ -122,7 +204,10 @@ impl Model {
         let n = spec.links.len();
         let bad = |m: String| Err(DynamicsError::InvalidModel(m));
         if n == 0 {
-            return bad("a model needs at least one revolute joint".into());
+            return bad("a model needs at least one joint".into());
+        }
+        if n > MAX_DOF {
+            return bad(format!("{n} joints: at most {MAX_DOF} are supported"));
         }
         for (what, v) in [
             ("q_start", &spec.q_start),

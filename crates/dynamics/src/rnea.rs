@@ -1,7 +1,7 @@
 //! Recursive Newton–Euler inverse dynamics: `τ = M(q) q̈ + C(q, q̇) q̇ + g(q)`, and from it the
 //! gravity torques `g(q)` and the non-inertial torques `h(q, q̇)` of the paper's `M q̈ + h = u`.
 
-use crate::data::{joint_motion, update_joint_poses, Data};
+use crate::data::{update_joint_poses, Data};
 use crate::error::{check_vec, Result};
 use crate::model::Model;
 use crate::spatial::Motion;
@@ -75,9 +75,9 @@ pub(crate) fn rnea_passes(
         let x = &data.joint_pose[i];
         let qd_i = qd.map_or(0.0, |v| v[i]);
         let qdd_i = qdd.map_or(0.0, |v| v[i]);
-        let vj = joint_motion(&l.axis, qd_i);
+        let vj = l.motion(qd_i);
         let v = x.motion_to_child(&v_parent) + vj;
-        let a = x.motion_to_child(&a_parent) + joint_motion(&l.axis, qdd_i) + v.cross_motion(&vj);
+        let a = x.motion_to_child(&a_parent) + l.motion(qdd_i) + v.cross_motion(&vj);
         let inertia = &l.inertia;
         data.f[i] = inertia.mul_motion(&a) + v.cross_force(&inertia.mul_motion(&v));
         data.v[i] = v;
@@ -85,10 +85,10 @@ pub(crate) fn rnea_passes(
         v_parent = v;
         a_parent = a;
     }
-    // Backward pass: project onto the joint axes and hand the forces to the parents.
+    // Backward pass: project onto the joint subspaces and hand the forces to the parents.
     for i in (0..n).rev() {
         let f = data.f[i];
-        data.tau[i] = model.links()[i].axis.dot(&f.ang);
+        data.tau[i] = model.links()[i].project(&f);
         if i > 0 {
             let fp = data.joint_pose[i].force_to_parent(&f);
             data.f[i - 1] += fp;

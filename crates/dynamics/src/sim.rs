@@ -61,6 +61,22 @@ pub enum Integrator {
     SemiImplicitEuler,
 }
 
+/// How the simulator integrates joint friction (`crate::sim_friction` explains the scheme).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FrictionScheme {
+    /// The configured integrator while the friction is not stiff for the step (`h λ̂ ≤`
+    /// [`STIFF_LIMIT`], checked every control period), implicit otherwise.
+    #[default]
+    Auto,
+    /// Always the configured integrator. A model whose friction is stiff for the step at its
+    /// start posture is refused, naming the joint and its friction parameters.
+    Explicit,
+    /// Always implicit: each substep is semi-implicit Euler with backward-Euler friction
+    /// (first order, whatever `integrator` says; a sticking joint stays stuck).
+    Implicit,
+}
+
 /// Standard deviations of the Gaussian sensor noise (0 = exact).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -87,6 +103,9 @@ pub struct SimConfig {
     pub substeps: usize,
     /// Integration scheme. Default `rk4`.
     pub integrator: Integrator,
+    /// Joint friction: explicit, implicit, or chosen from its stiffness every control period.
+    /// Default `auto` (explicit, and bit-identical to it, whenever the friction is not stiff).
+    pub friction: FrictionScheme,
     /// Sensor noise. Default none.
     pub sensor_noise: SensorNoise,
     /// Standard deviation of Gaussian noise added to every applied torque (N·m). Default 0.
@@ -103,6 +122,7 @@ impl Default for SimConfig {
             control_period: 0.002,
             substeps: 2,
             integrator: Integrator::Rk4,
+            friction: FrictionScheme::Auto,
             sensor_noise: SensorNoise::default(),
             actuator_noise: 0.0,
             seed: 0,
@@ -141,10 +161,16 @@ pub struct SimStats {
     pub torque_saturations: u64,
     /// Control periods in which at least one joint hit a position limit.
     pub limit_hits: u64,
+    /// Control periods whose friction was integrated implicitly (stiff for the step).
+    #[serde(default)]
+    pub implicit_friction: u64,
 }
 
+#[path = "sim_friction.rs"]
+mod sim_friction;
 #[path = "sim_robot.rs"]
 mod sim_robot;
+pub use sim_friction::STIFF_LIMIT;
 pub use sim_robot::SimRobot;
 
 /// Gaussian noise with standard deviation `std` (0 draws nothing, keeping streams aligned).

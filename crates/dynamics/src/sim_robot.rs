@@ -1,9 +1,11 @@
 //! [`SimRobot`]: fixed control period, finer integration inside, limits, noise, divergence check.
 
+use super::sim_friction::{FrictionStep, STIFF_LIMIT};
 use super::{
-    new_rng, noise, task_acceleration, Integrator, Measurement, Robot, SimConfig, SimStats,
+    new_rng, noise, task_acceleration, FrictionScheme, Integrator, Measurement, Robot, SimConfig,
+    SimStats,
 };
-use crate::aba::forward_dynamics as fd;
+use crate::aba::{aba, forward_dynamics as fd};
 use crate::data::Data;
 use crate::error::check_vec as check;
 use crate::error::{DynamicsError, Result};
@@ -37,6 +39,7 @@ pub struct SimRobot {
     kq: [DVector<f64>; 4],
     kv: [DVector<f64>; 4],
     qdd: DVector<f64>,
+    friction: FrictionStep,
 }
 
 impl SimRobot {
@@ -74,11 +77,13 @@ impl SimRobot {
             kq: [z.clone(), z.clone(), z.clone(), z.clone()],
             kv: [z.clone(), z.clone(), z.clone(), z.clone()],
             qdd: z,
+            friction: FrictionStep::new(&model),
             model,
             cfg,
         };
         let zeros = vec![0.0; n];
         sim.reset(&q_start, &zeros)?;
+        sim.check_explicit_friction()?;
         Ok(sim)
     }
 
@@ -153,9 +158,76 @@ impl SimRobot {
         Ok(())
     }
 
-    /// One integration step of length `h` of `(q, q̇)` in place.
-    fn integrate(&mut self, h: f64) -> Result<()> {
+    /// With `FrictionScheme::Explicit`, refuses friction that is stiff for the step at the start
+    /// posture (the explicit integrator would diverge), naming the joint and its parameters.
+    fn check_explicit_friction(&mut self) -> Result<()> {
+        if self.cfg.friction != FrictionScheme::Explicit || !self.friction.any() {
+            return Ok(());
+        }
+        let h = self.cfg.control_period / self.cfg.substeps as f64;
+        let rate = self
+            .friction
+            .rate(&self.model, &mut self.data, self.q.as_slice())?;
+        if h * rate <= STIFF_LIMIT {
+            return Ok(());
+        }
+        let l = &self.model.links()[self.friction.stiffest()];
+        let f = &l.friction;
+        Err(DynamicsError::InvalidConfig(format!(
+            "friction = \"explicit\": joint '{}' has friction (viscous {}, coulomb {} over \
+             coulomb_velocity {}) too stiff for the step of {h:e} s (h·λ̂ = {:.3} > {STIFF_LIMIT}); \
+             use friction = \"auto\" or \"implicit\", or at least {} substeps",
+            l.joint_name,
+            f.viscous,
+            f.coulomb,
+            f.coulomb_velocity,
+            h * rate,
+            (self.cfg.control_period * rate / STIFF_LIMIT).ceil()
+        )))
+    }
+
+    /// Whether this control period integrates the friction implicitly (`FrictionScheme`).
+    fn implicit_friction(&mut self, h: f64) -> Result<bool> {
+        if !self.friction.any() {
+            return Ok(false);
+        }
+        Ok(match self.cfg.friction {
+            FrictionScheme::Explicit => false,
+            FrictionScheme::Implicit => true,
+            FrictionScheme::Auto => {
+                let rate = self
+                    .friction
+                    .rate(&self.model, &mut self.data, self.q.as_slice())?;
+                h * rate > STIFF_LIMIT
+            }
+        })
+    }
+
+    /// One substep with implicit friction (semi-implicit Euler): the rigid-body acceleration at
+    /// the current state gives `v* = q̇ + h q̈_rigid`, the new velocity solves
+    /// `M (v − v*) + h τ_f(v) = 0` (backward Euler on the friction), and `q ← q + h v`. Applied
+    /// torque and friction balance in one solve, so a joint that sticks stays stuck.
+    fn implicit_substep(&mut self, h: f64) -> Result<()> {
+        let (model, data) = (&self.model, &mut self.data);
+        accel_rigid(
+            model,
+            data,
+            &self.u_applied,
+            &self.q,
+            &self.qd,
+            &mut self.qdd,
+        )?;
+        self.qd.axpy(h, &self.qdd, 1.0);
+        self.friction.rate(model, data, self.q.as_slice())?;
+        self.friction.step(model, &mut self.qd, h)?;
+        self.q.axpy(h, &self.qd, 1.0);
+        Ok(())
+    }
+
+    /// One integration step of length `h` of `(q, q̇)` in place, with or without friction.
+    fn integrate(&mut self, h: f64, friction: bool) -> Result<()> {
         let (model, data, u) = (&self.model, &mut self.data, &self.u_applied);
+        let accel = if friction { accel } else { accel_rigid };
         match self.cfg.integrator {
             Integrator::SemiImplicitEuler => {
                 accel(model, data, u, &self.q, &self.qd, &mut self.qdd)?;
@@ -215,6 +287,21 @@ fn stage(x: &DVector<f64>, k: &DVector<f64>, h: f64, out: &mut DVector<f64>) {
     }
 }
 
+/// Rigid-body forward dynamics (no friction) into `out`.
+#[inline]
+fn accel_rigid(
+    model: &Model,
+    data: &mut Data,
+    u: &DVector<f64>,
+    q: &DVector<f64>,
+    qd: &DVector<f64>,
+    out: &mut DVector<f64>,
+) -> Result<()> {
+    let qdd = aba(model, data, q.as_slice(), qd.as_slice(), u.as_slice())?;
+    out.copy_from(qdd);
+    Ok(())
+}
+
 /// Forward dynamics with friction into `out`.
 #[inline]
 fn accel(
@@ -264,9 +351,17 @@ impl Robot for SimRobot {
         }
         let h = self.cfg.control_period / self.cfg.substeps as f64;
         let mut hit = false;
-        let mut result = Ok(());
+        let mut result = self.implicit_friction(h);
+        let implicit = *result.as_ref().unwrap_or(&false);
         for _ in 0..self.cfg.substeps {
-            result = self.integrate(h);
+            if result.is_err() {
+                break;
+            }
+            result = if implicit {
+                self.implicit_substep(h).map(|_| implicit)
+            } else {
+                self.integrate(h, true).map(|_| implicit)
+            };
             if result.is_err() {
                 break;
             }
@@ -281,6 +376,9 @@ impl Robot for SimRobot {
             self.qd.copy_from(&self.qd0);
             return Err(match result {
                 Err(e @ DynamicsError::Singular { .. }) => e,
+                Err(DynamicsError::Diverged { what, .. }) => {
+                    DynamicsError::Diverged { t: self.t, what }
+                }
                 _ => DynamicsError::Diverged {
                     t: self.t,
                     what: "joint state",
@@ -289,6 +387,7 @@ impl Robot for SimRobot {
         }
         self.t += self.cfg.control_period;
         self.stats.steps += 1;
+        self.stats.implicit_friction += implicit as u64;
         self.stats.torque_saturations += saturated as u64;
         self.stats.limit_hits += hit as u64;
         self.measure()?;

@@ -143,6 +143,30 @@ pub fn axis_angle(axis: &Vector3<f64>, q: f64) -> Matrix3<f64> {
     Matrix3::identity() + k * s + k * k * (1.0 - c)
 }
 
+/// `o · Rot(axis, q)` for a unit `axis`. For an axis along ±x, ±y or ±z (most robots) only the
+/// two columns that turn are computed, with the values of the general product `o ·`
+/// [`axis_angle`]`(axis, q)`: that rotation's entries are then exact (±s, `1 − (1 − c)`, 1, 0),
+/// so each column of the product is a sum of two non-zero terms, which is commutative.
+#[inline]
+pub fn rotate_about(o: &Matrix3<f64>, axis: &Vector3<f64>, q: f64) -> Matrix3<f64> {
+    let (a, sign) = match (axis.x, axis.y, axis.z) {
+        (x, 0.0, 0.0) if x.abs() == 1.0 => (0, x),
+        (0.0, y, 0.0) if y.abs() == 1.0 => (1, y),
+        (0.0, 0.0, z) if z.abs() == 1.0 => (2, z),
+        _ => return o * axis_angle(axis, q),
+    };
+    let (s, c) = q.sin_cos();
+    let s = sign * s;
+    // Rodrigues' diagonal entry of the turning axes, as the general formula evaluates it.
+    let cc = 1.0 + -(1.0 - c);
+    let (i, j) = ((a + 1) % 3, (a + 2) % 3);
+    let (ci, cj) = (o.column(i).into_owned(), o.column(j).into_owned());
+    let mut r = *o;
+    r.set_column(i, &(ci * cc + cj * s));
+    r.set_column(j, &(ci * -s + cj * cc));
+    r
+}
+
 /// Roll-pitch-yaw (URDF convention: `R = Rz(yaw) Ry(pitch) Rx(roll)`) to a rotation matrix.
 pub fn rpy_to_matrix(r: f64, p: f64, y: f64) -> Matrix3<f64> {
     axis_angle(&Vector3::z(), y) * axis_angle(&Vector3::y(), p) * axis_angle(&Vector3::x(), r)

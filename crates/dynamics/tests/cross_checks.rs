@@ -140,3 +140,25 @@ fn jacobian_and_jdot_qd_match_finite_differences() {
         }
     }
 }
+
+#[test]
+fn coordinate_axis_rotations_equal_the_general_formula() {
+    use osrl_dynamics::spatial::axis_angle;
+    use osrl_dynamics::spatial::rotate_about as fast;
+    let mut r = rng(15);
+    for k in 0..60_000 {
+        let a = k % 6;
+        let mut axis = nalgebra::Vector3::zeros();
+        axis[a % 3] = if a < 3 { 1.0 } else { -1.0 };
+        let o = axis_angle(
+            &nalgebra::Vector3::from_column_slice(&rand_vec(&mut r, 3, 1.0)).normalize(),
+            rand_vec(&mut r, 1, 3.0)[0],
+        );
+        let q = rand_vec(&mut r, 1, 10.0)[0];
+        assert_eq!(
+            fast(&o, &axis, q),
+            o * axis_angle(&axis, q),
+            "axis {axis:?} q {q}"
+        );
+    }
+}

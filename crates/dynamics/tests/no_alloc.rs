@@ -17,10 +17,18 @@ fn allocations(f: impl FnOnce()) -> usize {
 
 #[test]
 fn dynamics_calls_and_simulation_steps_do_not_allocate() {
+    let xarm7 = osrl_dynamics::urdf::load_urdf(
+        &std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("tests/fixtures/example-robot-data/xarm7.urdf"),
+    )
+    .unwrap();
+    // xarm7: its stiff friction takes the implicit path of the simulator.
     for model in [
         robots::planar3(),
         robots::sarcos7(),
         robots::random_arm(9, 5, true),
+        robots::random_mixed_arm(6, 2, true),
+        xarm7,
     ] {
         let n = model.nq();
         let mut data = model.data();

@@ -2,7 +2,7 @@
 
 mod common;
 use common::{models, rand_vec, rng};
-use osrl_dynamics::urdf::{parse_urdf, to_urdf};
+use osrl_dynamics::urdf::{parse_urdf, parse_urdf_with, to_urdf, UrdfOptions};
 use osrl_dynamics::{compute_all, DynamicsError};
 
 #[test]
@@ -56,9 +56,21 @@ fn malformed_and_unsupported_files_name_the_element() {
     assert!(urdf_error("<robot><link name=").contains("malformed XML"));
     assert!(urdf_error("<model/>").contains("expected <robot>"));
     let m = urdf_error(&robot(
-        r#"<joint name="j1" type="prismatic"><parent link="base"/><child link="a"/></joint>"#,
+        r#"<joint name="j1" type="ball"><parent link="base"/><child link="a"/></joint>"#,
     ));
-    assert!(m.contains("j1") && m.contains("prismatic"), "{m}");
+    assert!(m.contains("j1") && m.contains("ball"), "{m}");
+    // A floating joint on the chain to the tip.
+    let floating = robot(
+        r#"<joint name="j1" type="floating"><parent link="base"/><child link="a"/></joint><joint name="j2" type="continuous"><parent link="a"/><child link="b"/></joint>"#,
+    );
+    let tip_a = UrdfOptions {
+        tip: Some("b".into()),
+        ..UrdfOptions::default()
+    };
+    match parse_urdf_with(&floating, &tip_a) {
+        Err(DynamicsError::Urdf(m)) => assert!(m.contains("j1") && m.contains("floating"), "{m}"),
+        other => panic!("expected an error, got {other:?}"),
+    }
     let m = urdf_error(
         &robot(
             r#"<joint name="j1" type="revolute"><parent link="base"/><child link="a"/></joint>"#,
@@ -74,10 +86,22 @@ fn malformed_and_unsupported_files_name_the_element() {
         r#"<joint name="j1" type="continuous"><parent link="base"/><child link="a"/><origin xyz="1 nope 0"/></joint><joint name="j2" type="continuous"><parent link="a"/><child link="b"/></joint>"#,
     ));
     assert!(m.contains("j1") && m.contains("xyz"), "{m}");
-    let m = urdf_error(&robot(
+    // Two arms from the base: no guess, unless the tip is given (the other arm is locked).
+    let two = robot(
         r#"<joint name="j1" type="continuous"><parent link="base"/><child link="a"/></joint><joint name="j2" type="continuous"><parent link="base"/><child link="b"/></joint>"#,
-    ));
-    assert!(m.contains("base") && m.contains("serial"), "{m}");
+    );
+    let m = urdf_error(&two);
+    assert!(
+        m.contains("j1") && m.contains("j2") && m.contains("tip option"),
+        "{m}"
+    );
+    let tip_a = UrdfOptions {
+        tip: Some("a".into()),
+        ..UrdfOptions::default()
+    };
+    let model = parse_urdf_with(&two, &tip_a).unwrap();
+    let locked = &model.spec().urdf.as_ref().unwrap().locked;
+    assert_eq!((model.nq(), locked[0].name.as_str()), (1, "j2"));
     let m = urdf_error(&robot(
         r#"<joint name="j1" type="continuous"><parent link="base"/><child link="a"/></joint>"#,
     ));
@@ -95,7 +119,15 @@ fn fixed_joints_are_folded_into_their_parent() {
       <joint name="j" type="continuous"><parent link="base"/><child link="a"/><axis xyz="0 0 1"/></joint>
       <joint name="f" type="fixed"><parent link="a"/><child link="tip"/><origin xyz="0.5 0 0"/></joint>
     </robot>"#;
+    // No link is named like an end-effector: the tip is the link the last joint moves, 'a'.
     let model = parse_urdf(text).unwrap();
+    assert_eq!(model.spec().urdf.as_ref().unwrap().tip, "a");
+    assert_eq!(model.spec().ee_offset, nalgebra::Vector3::zeros());
+    let tip = UrdfOptions {
+        tip: Some("tip".into()),
+        ..UrdfOptions::default()
+    };
+    let model = parse_urdf_with(text, &tip).unwrap();
     assert_eq!(model.nq(), 1);
     assert_eq!(model.task_axes(), &[0, 1]);
     let mut data = model.data();

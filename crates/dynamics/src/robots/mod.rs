@@ -5,7 +5,7 @@ mod random;
 mod sarcos7;
 
 pub use planar3::planar3;
-pub use random::{random_arm, random_unit_vector};
+pub use random::{random_arm, random_mixed_arm, random_unit_vector};
 pub use sarcos7::sarcos7;
 
 use crate::{DynamicsError, Model, Result};

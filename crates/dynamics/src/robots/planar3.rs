@@ -1,7 +1,7 @@
 //! `planar3`: a three-link arm in the vertical x–z plane, sized like a human arm.
 
 use crate::inertia::Inertia;
-use crate::model::{Friction, JointLimits, Link, Model, ModelSpec, GRAVITY};
+use crate::model::{Friction, JointKind, JointLimits, Link, Model, ModelSpec, GRAVITY};
 use crate::spatial::Pose;
 use nalgebra::{Matrix3, Vector3};
 
@@ -36,6 +36,7 @@ pub fn planar3() -> Model {
                 joint_name: format!("{}_joint", names[i]),
                 origin: Pose::new(Matrix3::identity(), Vector3::new(origin, 0.0, 0.0)),
                 axis: Vector3::new(0.0, -1.0, 0.0),
+                kind: JointKind::Revolute,
                 inertia: Inertia::from_com(m, Vector3::new(l / 2.0, 0.0, 0.0), inertia_com),
                 friction: Friction {
                     viscous: VISCOUS[i],
@@ -60,6 +61,7 @@ pub fn planar3() -> Model {
         q_rest: vec![-1.0, 1.4, 0.7],
         kp: vec![20.0, 15.0, 8.0],
         kd: vec![4.0, 3.0, 1.5],
+        urdf: None,
     })
     .expect("planar3 parameters are valid")
 }

@@ -1,7 +1,7 @@
 //! A seeded generator of random serial arms, for cross-checks beyond the built-in robots.
 
 use crate::inertia::Inertia;
-use crate::model::{Friction, JointLimits, Link, Model, ModelSpec, GRAVITY};
+use crate::model::{Friction, JointKind, JointLimits, Link, Model, ModelSpec, GRAVITY};
 use crate::spatial::{axis_angle, Pose};
 use nalgebra::{Matrix3, Vector3};
 use rand::{RngExt, SeedableRng};
@@ -71,6 +71,7 @@ pub fn random_arm(n: usize, seed: u64, friction: bool) -> Model {
                 joint_name: format!("joint{i}"),
                 origin,
                 axis: random_unit_vector(&mut rng),
+                kind: JointKind::Revolute,
                 inertia: Inertia::from_com(
                     mass,
                     com,
@@ -91,6 +92,25 @@ pub fn random_arm(n: usize, seed: u64, friction: bool) -> Model {
         q_rest: vec![0.0; n],
         kp: vec![10.0; n],
         kd: vec![1.0; n],
+        urdf: None,
     })
     .expect("random arm parameters are valid")
+}
+
+/// [`random_arm`] with every third joint (indices 1, 4, 7, …) prismatic, limited to ±0.3 m, and
+/// the revolute joints limited to ±π: a chain mixing both joint kinds, for the cross-checks.
+pub fn random_mixed_arm(n: usize, seed: u64, friction: bool) -> Model {
+    let mut spec = random_arm(n, seed, friction).spec().clone();
+    spec.name = format!("mixed{n}_{seed}");
+    for (i, l) in spec.links.iter_mut().enumerate() {
+        let (kind, range) = if i % 3 == 1 {
+            (JointKind::Prismatic, 0.3)
+        } else {
+            (JointKind::Revolute, std::f64::consts::PI)
+        };
+        l.kind = kind;
+        l.limits.q_min = -range;
+        l.limits.q_max = range;
+    }
+    Model::new(spec).expect("random arm parameters are valid")
 }

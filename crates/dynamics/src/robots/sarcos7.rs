@@ -1,7 +1,7 @@
 //! `sarcos7`: the SARCOS Master Arm with its identified parameters (`shared/robots/sarcos7.md`).
 
 use crate::inertia::Inertia;
-use crate::model::{Friction, JointLimits, Link, Model, ModelSpec, GRAVITY};
+use crate::model::{Friction, JointKind, JointLimits, Link, Model, ModelSpec, GRAVITY};
 use crate::spatial::{axis_angle, Pose};
 use nalgebra::{Matrix3, Vector3};
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
@@ -87,6 +87,7 @@ pub fn sarcos7() -> Model {
                 joint_name: format!("{name}_joint"),
                 origin: Pose::new(rot, Vector3::from(t)),
                 axis: Vector3::z(),
+                kind: JointKind::Revolute,
                 inertia: Inertia::from_origin(p[0], Vector3::new(p[1], p[2], p[3]), inertia),
                 friction: Friction {
                     viscous: p[10],
@@ -111,6 +112,7 @@ pub fn sarcos7() -> Model {
         q_rest: JOINTS.iter().map(|j| j[2]).collect(),
         kp: JOINTS.iter().map(|j| j[3]).collect(),
         kd: JOINTS.iter().map(|j| j[4]).collect(),
+        urdf: None,
     })
     .expect("sarcos7 parameters are valid")
 }

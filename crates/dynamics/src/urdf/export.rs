@@ -1,6 +1,7 @@
 //! URDF export of a [`Model`].
 
-use crate::model::Model;
+use crate::inertia::Inertia;
+use crate::model::{JointKind, Model};
 use crate::spatial::matrix_to_rpy;
 use nalgebra::{Matrix3, Vector3};
 use std::fmt::Write;
@@ -25,44 +26,59 @@ fn origin(xyz: &Vector3<f64>, rot: &Matrix3<f64>) -> String {
     )
 }
 
+/// A link with its `<inertial>` (centre of mass and inertia about it).
+fn write_link(s: &mut String, l: &crate::model::Link) {
+    let i = &l.inertia;
+    let ic = i.inertia_com();
+    let _ = writeln!(s, "  <link name=\"{}\">", l.name);
+    let _ = writeln!(s, "    <inertial>");
+    let _ = writeln!(
+        s,
+        "      <origin xyz=\"{}\" rpy=\"0 0 0\"/>",
+        vec3(&i.com())
+    );
+    let _ = writeln!(s, "      <mass value=\"{}\"/>", num(i.mass));
+    let _ = writeln!(
+        s,
+        "      <inertia ixx=\"{}\" ixy=\"{}\" ixz=\"{}\" iyy=\"{}\" iyz=\"{}\" izz=\"{}\"/>",
+        num(ic[(0, 0)]),
+        num(ic[(0, 1)]),
+        num(ic[(0, 2)]),
+        num(ic[(1, 1)]),
+        num(ic[(1, 2)]),
+        num(ic[(2, 2)])
+    );
+    let _ = writeln!(s, "    </inertial>");
+    let _ = writeln!(s, "  </link>");
+}
+
 /// The model as a URDF document. Gravity is not part of URDF: the model's is assumed to be the
-/// URDF convention (9.81 m/s² along −z). Postures, gains and task axes are not exported.
+/// URDF convention (9.81 m/s² along −z). Postures, gains and task axes are not exported. A model
+/// with a link inertia that no rigid body has (identified base parameters) gets the element
+/// `<osrl identified_inertias="true"/>`, so that it loads back.
 pub fn to_urdf(model: &Model) -> String {
     let spec = model.spec();
     let mut s = String::new();
     let _ = writeln!(s, "<?xml version=\"1.0\"?>");
     let _ = writeln!(s, "<!-- {} exported by osrl -->", spec.name);
     let _ = writeln!(s, "<robot name=\"{}\">", spec.name);
+    let identified = spec.links.iter().any(|l| {
+        Inertia::unphysical(&l.inertia.inertia_com(), l.inertia.inertia.trace().abs()).is_some()
+    });
+    if identified {
+        // Identified base parameters: physical for the arm as a whole, not link by link.
+        let _ = writeln!(s, "  <osrl identified_inertias=\"true\"/>");
+    }
     let _ = writeln!(s, "  <link name=\"base_link\"/>");
     let mut parent = "base_link".to_string();
     for l in &spec.links {
-        let i = &l.inertia;
-        let ic = i.inertia_com();
-        let _ = writeln!(s, "  <link name=\"{}\">", l.name);
-        let _ = writeln!(s, "    <inertial>");
-        let _ = writeln!(
-            s,
-            "      <origin xyz=\"{}\" rpy=\"0 0 0\"/>",
-            vec3(&i.com())
-        );
-        let _ = writeln!(s, "      <mass value=\"{}\"/>", num(i.mass));
-        let _ = writeln!(
-            s,
-            "      <inertia ixx=\"{}\" ixy=\"{}\" ixz=\"{}\" iyy=\"{}\" iyz=\"{}\" izz=\"{}\"/>",
-            num(ic[(0, 0)]),
-            num(ic[(0, 1)]),
-            num(ic[(0, 2)]),
-            num(ic[(1, 1)]),
-            num(ic[(1, 2)]),
-            num(ic[(2, 2)])
-        );
-        let _ = writeln!(s, "    </inertial>");
-        let _ = writeln!(s, "  </link>");
+        write_link(&mut s, l);
         let lim = &l.limits;
-        let kind = if lim.q_min.is_finite() && lim.q_max.is_finite() {
-            "revolute"
-        } else {
-            "continuous"
+        let limited = lim.q_min.is_finite() && lim.q_max.is_finite();
+        let kind = match (l.kind, limited) {
+            (JointKind::Revolute, true) => "revolute",
+            (JointKind::Revolute, false) => "continuous",
+            (JointKind::Prismatic, _) => "prismatic",
         };
         let _ = writeln!(s, "  <joint name=\"{}\" type=\"{kind}\">", l.joint_name);
         let _ = writeln!(s, "    <parent link=\"{parent}\"/>");
@@ -75,11 +91,12 @@ pub fn to_urdf(model: &Model) -> String {
             num(finite_or(lim.tau_max, 1e6)),
             num(finite_or(lim.qd_max, 1e6))
         );
-        if kind == "revolute" {
+        if kind != "continuous" {
+            // URDF has no unlimited prismatic joint: ±1e6 m stands for "no limit".
             limit = format!(
                 "lower=\"{}\" upper=\"{}\" {limit}",
-                num(lim.q_min),
-                num(lim.q_max)
+                num(finite_or(lim.q_min, -1e6)),
+                num(finite_or(lim.q_max, 1e6))
             );
         }
         let _ = writeln!(s, "    <limit {limit}/>");
