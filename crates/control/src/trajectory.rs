@@ -179,6 +179,23 @@ impl Trajectory {
     pub fn period(&self) -> f64 {
         self.period
     }
+    /// Control steps of `dt` seconds in one cycle, `period / dt` rounded to the nearest whole
+    /// step (the closed-loop driver's window and the evaluators count whole periods in these);
+    /// 0 when `dt` is not a positive finite number.
+    ///
+    /// ```
+    /// # use osrl_control::TrajectoryConfig;
+    /// let traj = TrajectoryConfig::default().build(&osrl_dynamics::robots::planar3()).unwrap();
+    /// assert_eq!(traj.steps_per_period(0.002), 2000); // the default 4 s figure-8 at 500 Hz
+    /// assert_eq!(traj.steps_per_period(0.0), 0);
+    /// ```
+    pub fn steps_per_period(&self, dt: f64) -> usize {
+        if dt > 0.0 && dt.is_finite() {
+            (self.period / dt).round() as usize
+        } else {
+            0
+        }
+    }
     /// The start ramp (s); 0 for minimum-jerk moves.
     pub fn ramp(&self) -> f64 {
         self.warp.ramp
