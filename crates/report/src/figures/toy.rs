@@ -1,8 +1,10 @@
-//! The two figures of `osrl toy`.
+//! The two figures of E1 (`osrl toy`): iterations to converge against the initial `τ`, and
+//! the paper's Fig. 1.
 
+use crate::error::Result;
 use crate::plot::{self, Contours, Figure, HeatMap, Legend, Panel, Rgb, Series, Style, PALETTE};
-use anyhow::Result;
-use rwr::toy::{trace, Case, Report, ToyConfig, Variant};
+use osrl_experiments::toy::{Fig1, FIG1_STEPS, FIG1_TAU0};
+use rwr::toy::{Report, ToyConfig, Variant};
 use std::path::{Path, PathBuf};
 
 const RED: Rgb = Rgb(200, 30, 30);
@@ -74,9 +76,9 @@ pub fn iterations(cfg: &ToyConfig, report: &Report, out: &Path) -> Result<Vec<Pa
 /// Fig. 1 of the paper: the policy (mean, ±σ) over the transformed reward `exp(−τ r)` in the
 /// (s, a) plane at several iterations, fixed (top row) vs adaptive (bottom row) `τ`,
 /// initial τ = 0.1, σ updated, seed 0.
-pub fn fig1(cfg: &ToyConfig, out: &Path) -> Result<Vec<PathBuf>> {
-    const STEPS: [usize; 6] = [0, 1, 2, 3, 5, 10];
-    let tau0 = 0.1;
+pub fn fig1(fig: &Fig1, out: &Path) -> Result<Vec<PathBuf>> {
+    const STEPS: [usize; 6] = FIG1_STEPS;
+    let (cfg, tau0) = (&fig.config, FIG1_TAU0);
     let (s_max, a_lo, a_hi) = (cfg.s_max, -2.5, 3.5);
     let xs: Vec<f64> = (0..=60)
         .map(|i| -s_max + 2.0 * s_max * i as f64 / 60.0)
@@ -87,14 +89,17 @@ pub fn fig1(cfg: &ToyConfig, out: &Path) -> Result<Vec<PathBuf>> {
     let star = cfg.theta_star();
     let mut panels = Vec::new();
     for variant in [Variant::Fixed, Variant::Adaptive] {
-        let case = Case {
-            tau0,
-            variant,
-            sigma_update: true,
+        let tr = match variant {
+            Variant::Fixed => &fig.fixed,
+            Variant::Adaptive => &fig.adaptive,
         };
-        let tr = trace(cfg, case, 0, STEPS[STEPS.len() - 1])?;
         for &k in &STEPS {
-            let st = tr[k];
+            let Some(&st) = tr.get(k) else {
+                return Err(crate::ReportError::Folder(format!(
+                    "Fig. 1 needs EM iteration {k}, the trace has {}",
+                    tr.len()
+                )));
+            };
             let name = if variant == Variant::Adaptive {
                 "adaptive"
             } else {

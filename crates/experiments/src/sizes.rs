@@ -1,10 +1,10 @@
-//! The sizes of `osrl reproduce`: one struct with the full and the `--quick` values, recorded in
-//! `results.json` under `config.sizes`.
+//! The sizes of the experiments (`osrl reproduce`): one struct with the full and the `--quick`
+//! values, recorded in `results.json` under `config.sizes`.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// Training size of one robot.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RobotSizes {
     /// Simulated training minutes, babbling included.
     pub minutes: f64,
@@ -14,8 +14,8 @@ pub struct RobotSizes {
     pub eval_every_minutes: f64,
 }
 
-/// Everything `osrl reproduce` scales.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+/// Everything the experiments scale.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Sizes {
     /// Seeds per case of the RWR toy problem (E1).
     pub toy_seeds: u64,
@@ -32,7 +32,9 @@ pub struct Sizes {
     pub payload_kg: f64,
     /// Postures drawn along the figure-8 in the arm drawing (Fig. 2a).
     pub arm_instants: usize,
+    /// Training sizes of the 3-DOF planar arm.
     pub planar3: RobotSizes,
+    /// Training sizes of the 7-DOF SARCOS arm.
     pub sarcos7: RobotSizes,
 }
 
@@ -84,7 +86,7 @@ impl Sizes {
         }
     }
 
-    /// The sizes of a robot by name.
+    /// The sizes of a robot by name (`sarcos7`; any other name: `planar3`'s).
     pub fn robot(&self, name: &str) -> &RobotSizes {
         if name == "sarcos7" {
             &self.sarcos7

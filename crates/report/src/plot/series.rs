@@ -2,7 +2,7 @@
 
 use super::render::err;
 use super::{Series, Style};
-use anyhow::Result;
+use crate::error::Result;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 

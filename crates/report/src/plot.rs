@@ -5,24 +5,26 @@
 //!
 //! Build a [`Figure`] of [`Panel`]s, each with [`Series`] (and optionally a [`HeatMap`] and
 //! [`Contours`]), then [`save`] it:
-//! ```ignore
-//! let panel = Panel::new("tracking", "time [s]", "error [mm]")
-//!     .with(Series::line("learned", pts).color(PALETTE[0]))
-//!     .with(Series::line("analytical", pts2).dashed());
-//! plot::save(&Figure::grid(vec![panel], 1), &out_dir, "tracking")?; // tracking.svg + .png
 //! ```
-
-// A shared toolbox: not every figure uses every helper.
-#![allow(dead_code)]
+//! use osrl_report::plot::{self, Figure, Panel, Series, PALETTE};
+//! let pts: Vec<(f64, f64)> = (0..50).map(|i| (0.1 * i as f64, (0.1 * i as f64).sin())).collect();
+//! let panel = Panel::new("tracking", "time [s]", "error [mm]")
+//!     .with(Series::line("learned", pts.clone()).color(PALETTE[0]))
+//!     .with(Series::line("analytical", pts).dashed());
+//! let dir = std::env::temp_dir().join(format!("osrl-plot-doc-{}", std::process::id()));
+//! let files = plot::save(&Figure::grid(vec![panel], 1), &dir, "tracking")?; // .svg + .png
+//! assert_eq!(files.len(), 2);
+//! # std::fs::remove_dir_all(&dir).unwrap();
+//! # Ok::<(), osrl_report::ReportError>(())
+//! ```
 
 mod contour;
 mod render;
 mod series;
 
-#[allow(unused_imports)]
 pub use contour::{contour_lines, contour_segments, viridis};
 
-use anyhow::{anyhow, Context, Result};
+use crate::error::{ReportError, Result};
 use std::path::{Path, PathBuf};
 
 /// An RGB colour.
@@ -258,21 +260,22 @@ fn register_font() -> Result<()> {
             .is_ok()
     });
     ok.then_some(())
-        .ok_or_else(|| anyhow!("embedded font could not be loaded"))
+        .ok_or_else(|| ReportError::Draw("embedded font could not be loaded".into()))
 }
 
 /// Writes `dir/stem.svg` and `dir/stem.png` (creating `dir`), returning both paths. Fails on
 /// an empty figure, an I/O error, or a drawing error.
 pub fn save(fig: &Figure, dir: &Path, stem: &str) -> Result<Vec<PathBuf>> {
     if fig.panels.is_empty() {
-        return Err(anyhow!("figure {stem} has no panels"));
+        return Err(ReportError::Draw(format!("figure {stem} has no panels")));
     }
     register_font()?;
-    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    crate::error::create_dir(dir)?;
     let svg = dir.join(format!("{stem}.svg"));
     let png = dir.join(format!("{stem}.png"));
-    render::to_svg(fig, &svg).with_context(|| format!("drawing {}", svg.display()))?;
-    render::to_png(fig, &png).with_context(|| format!("drawing {}", png.display()))?;
+    let at = |p: &Path, e: ReportError| ReportError::Draw(format!("drawing {}: {e}", p.display()));
+    render::to_svg(fig, &svg).map_err(|e| at(&svg, e))?;
+    render::to_png(fig, &png).map_err(|e| at(&png, e))?;
     Ok(vec![svg, png])
 }
 

@@ -1,8 +1,17 @@
-//! Numeric CSV files with a header row (`osrl lwpr`). Every error names the file and line, and
-//! for a bad cell its column (number and name) and its text.
+//! Numeric CSV files with a header row: data for `osrl lwpr`, and the report's time series
+//! (written with every number's shortest exact decimal, so reading them back gives the same
+//! numbers bit for bit). Every error names the file and line, and for a bad cell its column
+//! (number and name) and its text.
 
-use anyhow::{bail, Context, Result};
+use crate::error::{ReportError, Result};
+use std::io::Write;
 use std::path::{Path, PathBuf};
+
+macro_rules! bail {
+    ($($t:tt)*) => {
+        return Err(ReportError::Csv(format!($($t)*)))
+    };
+}
 
 /// A CSV file's column names and rows (every row has one finite number per column).
 #[derive(Debug)]
@@ -23,15 +32,28 @@ impl Table {
     /// are skipped; `\n` or `\r\n` line ends, a UTF-8 byte-order mark and spaces around cells
     /// are allowed.
     pub fn read(path: &Path) -> Result<Table> {
+        Self::read_with(path, true)
+    }
+
+    /// As [`Table::read`], but cells may also be `NaN`, `inf` or `-inf` (a time series of a
+    /// run that diverged).
+    pub fn read_series(path: &Path) -> Result<Table> {
+        Self::read_with(path, false)
+    }
+
+    fn read_with(path: &Path, finite_only: bool) -> Result<Table> {
         let file = path.display();
-        let bytes = std::fs::read(path).with_context(|| format!("reading {file}"))?;
+        let bytes =
+            std::fs::read(path).map_err(|e| ReportError::Csv(format!("reading {file}: {e}")))?;
         let text = std::str::from_utf8(&bytes).map_err(|e| {
             let line = bytes[..e.valid_up_to()]
                 .iter()
                 .filter(|&&b| b == b'\n')
                 .count()
                 + 1;
-            anyhow::anyhow!("{file}:{line}: not UTF-8 text (save the CSV as UTF-8)")
+            ReportError::Csv(format!(
+                "{file}:{line}: not UTF-8 text (save the CSV as UTF-8)"
+            ))
         })?;
         let text = text.strip_prefix('\u{feff}').unwrap_or(text);
         if text.contains('\r') && !text.contains('\n') {
@@ -42,9 +64,11 @@ impl Table {
             .enumerate()
             .map(|(i, l)| (i + 1, l))
             .filter(|(_, l)| !l.trim().is_empty());
-        let (hl, header) = lines
-            .next()
-            .with_context(|| format!("{file}: empty file (need a header row and data rows)"))?;
+        let (hl, header) = lines.next().ok_or_else(|| {
+            ReportError::Csv(format!(
+                "{file}: empty file (need a header row and data rows)"
+            ))
+        })?;
         // Names may be quoted (as R's write.csv writes them).
         let names: Vec<String> = header
             .split(',')
@@ -83,7 +107,7 @@ impl Table {
             for (j, cell) in cells.iter().enumerate() {
                 let at = || format!("{file}:{ln}: column {} ({})", j + 1, names[j]);
                 match cell.parse::<f64>() {
-                    Ok(v) if v.is_finite() => row.push(v),
+                    Ok(v) if v.is_finite() || !finite_only => row.push(v),
                     Ok(_) => bail!("{}: '{cell}' is not finite", at()),
                     Err(_) if cell.contains([';', '\t']) => {
                         bail!(
@@ -129,4 +153,26 @@ impl Table {
         }
         Ok(())
     }
+
+    /// The column named `name`.
+    pub fn column(&self, name: &str) -> Option<usize> {
+        self.names.iter().position(|n| n == name)
+    }
+}
+
+/// Writes `head` and `rows` to `path` (creating its folder), every number as Rust writes an
+/// `f64` (the shortest decimal that reads back exactly; `NaN`, `inf`).
+pub fn write(path: &Path, head: &[String], rows: impl Iterator<Item = Vec<f64>>) -> Result<()> {
+    if let Some(dir) = path.parent() {
+        crate::error::create_dir(dir)?;
+    }
+    let io = |e| ReportError::io(path, e);
+    let file = std::fs::File::create(path).map_err(io)?;
+    let mut w = std::io::BufWriter::new(file);
+    writeln!(w, "{}", head.join(",")).map_err(io)?;
+    for row in rows {
+        let row: Vec<String> = row.iter().map(|v| format!("{v}")).collect();
+        writeln!(w, "{}", row.join(",")).map_err(io)?;
+    }
+    w.flush().map_err(io)
 }

@@ -1,39 +1,19 @@
-//! Figures of `osrl reproduce` beyond those of `osrl simulate`/`osrl eval`: figure-8 tracking
-//! learned vs analytical (Fig. 2b/3b), learning curves over seeds (E5), the ablation's curves
-//! (E6) and the arm drawn at several instants along the figure-8 (Fig. 2a).
+//! Figures of the learned controller's experiments: figure-8 tracking learned vs analytical
+//! (E3, Fig. 2b/3b), learning curves over seeds (E5) and of the ablation's variants (E6), and
+//! the arm drawn at several instants along the figure-8 (E3, Fig. 2a).
 
-use crate::learned::Setup;
-use crate::plot::{Figure, Legend, Panel, Series, PALETTE};
-use anyhow::Result;
+use super::path::{plane, AXES};
+use crate::error::Result;
+use crate::plot::{Figure, Legend, Panel, Series, Style, PALETTE};
 use osrl_control::Trajectory;
-use osrl_learn::eval::{EvalResult, EvalSeries};
-
-const AXES: [&str; 3] = ["x", "y", "z"];
-
-/// One run's learning curve: `(simulated minutes, evaluation)`.
-pub type Curve = Vec<(f64, EvalResult)>;
-
-/// A labelled set of runs' curves (one learner over its seeds).
-pub type Runs<'a> = (&'a str, Vec<Curve>);
-
-/// The two task columns that move most along the desired path (in column order).
-fn plane(x_d: &[f64], m: usize) -> (usize, usize) {
-    if m < 2 {
-        return (0, 0);
-    }
-    let len = x_d.len() / m;
-    let span = |c: usize| {
-        let v = (0..len).map(|k| x_d[k * m + c]);
-        v.clone().fold(f64::MIN, f64::max) - v.fold(f64::MAX, f64::min)
-    };
-    let mut cols: Vec<usize> = (0..m).collect();
-    cols.sort_by(|&a, &b| span(b).total_cmp(&span(a)));
-    (cols[0].min(cols[1]), cols[0].max(cols[1]))
-}
+use osrl_experiments::results::Curves;
+use osrl_experiments::stats::SpreadSeries;
+use osrl_experiments::Setup;
+use osrl_learn::eval::EvalSeries;
 
 /// Desired, analytical (eq. 7) and learned paths, and both tracking errors over time.
 pub fn tracking(setup: &Setup, learned: &EvalSeries, analytical: &osrl_control::Series) -> Figure {
-    let axes = setup.model.task_axes();
+    let axes = setup.model().task_axes();
     let m = axes.len();
     let (c1, c2) = plane(&learned.x_d, m);
     let pts = |v: &[f64]| -> Vec<(f64, f64)> {
@@ -49,7 +29,7 @@ pub fn tracking(setup: &Setup, learned: &EvalSeries, analytical: &osrl_control::
             })
             .collect()
     };
-    let name = setup.model.name();
+    let name = setup.model().name();
     let mut path = Panel::new(
         &format!("{name}: end-effector path"),
         &format!("{} [m]", AXES[axes[c1]]),
@@ -84,37 +64,24 @@ pub fn tracking(setup: &Setup, learned: &EvalSeries, analytical: &osrl_control::
     Figure::grid(vec![path, error], 2)
 }
 
-/// Mean and (min, max) over seeds of `f` at each evaluation of the learning curves, over the
-/// seeds whose evaluation there did not diverge (points where all diverged are left out).
-pub fn spread(curves: &[Curve], f: impl Fn(&EvalResult) -> f64) -> Vec<(f64, f64, f64, f64)> {
-    let len = curves.iter().map(Vec::len).min().unwrap_or(0);
-    (0..len)
-        .filter(|&i| curves.iter().any(|c| !c[i].1.diverged))
-        .map(|i| {
-            let v: Vec<f64> = curves
-                .iter()
-                .filter(|c| !c[i].1.diverged)
-                .map(|c| f(&c[i].1))
-                .collect();
-            let mean = v.iter().sum::<f64>() / v.len() as f64;
-            let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
-            let hi = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-            (curves[0][i].0, mean, lo, hi)
-        })
-        .collect()
-}
-
-fn curve_series(label: &str, s: &[(f64, f64, f64, f64)], color: usize) -> Series {
-    Series::line(label, s.iter().map(|p| (p.0, p.1)).collect())
-        .errors(s.iter().map(|p| (p.2, p.3)).collect())
+fn curve_series(label: &str, minutes: &[f64], s: &SpreadSeries, color: usize) -> Series {
+    let pts = minutes.iter().zip(&s.mean).map(|(&t, &m)| (t, m)).collect();
+    let bars = s.min.iter().zip(&s.max).map(|(&a, &b)| (a, b)).collect();
+    Series::line(label, pts)
+        .errors(bars)
         .color(PALETTE[color % PALETTE.len()])
-        .style(crate::plot::Style::LineMarkers)
+        .style(Style::LineMarkers)
 }
 
 /// Learning curves of several learners (one colour each, mean over seeds with min–max bars):
-/// tracking error, command nMSE against `u*`, command cost ratio; `reference` draws the
-/// analytical tracking error as a flat line.
-pub fn curves(title: &str, runs: &[Runs], reference_mm: Option<f64>) -> Figure {
+/// tracking error, command nMSE against `u*`, command cost ratio; `reference_mm` draws the
+/// analytical tracking error as a flat line from 0 to `t_max` simulated minutes.
+pub fn curves(
+    title: &str,
+    runs: &[(String, Curves)],
+    reference_mm: Option<f64>,
+    t_max: f64,
+) -> Figure {
     let mut track = Panel::new("tracking error", "simulated training [min]", "RMS [mm]");
     let mut nmse = Panel::new(
         "command error vs u*",
@@ -127,14 +94,11 @@ pub fn curves(title: &str, runs: &[Runs], reference_mm: Option<f64>) -> Figure {
         "‖u − u0‖² / that of u*",
     );
     for (i, (label, c)) in runs.iter().enumerate() {
-        track = track.with(curve_series(label, &spread(c, |e| e.tracking_rms_mm), i));
-        nmse = nmse.with(curve_series(label, &spread(c, |e| e.command_nmse), i));
-        cost = cost.with(curve_series(label, &spread(c, |e| e.command_cost_ratio), i));
+        let t = &c.sim_minutes;
+        track = track.with(curve_series(label, t, &c.tracking_rms_mm, i));
+        nmse = nmse.with(curve_series(label, t, &c.command_nmse, i));
+        cost = cost.with(curve_series(label, t, &c.command_cost_ratio, i));
     }
-    let t_max = runs
-        .iter()
-        .flat_map(|(_, c)| c.iter().flat_map(|s| s.last().map(|p| p.0)))
-        .fold(0.0, f64::max);
     if let Some(r) = reference_mm {
         track = track.with(
             Series::line("analytical eq. 7", vec![(0.0, r), (t_max, r)])
@@ -192,15 +156,16 @@ pub fn arm_instants(t: &[f64], traj: &Trajectory, per_period: usize, k: usize) -
 /// colour and its time `t` in the legend; planar arms
 /// in their plane, 3-D arms in the two planes spanned by the path's main axis and each other axis.
 pub fn arm(setup: &Setup, s: &ArmSeries, per_period: usize, k: usize) -> Result<Figure> {
-    let model = &setup.model;
+    let model = setup.model();
     let (n, axes) = (model.nq(), model.task_axes());
     let m = axes.len();
-    let rows = arm_instants(s.t, &setup.traj, per_period, k);
+    let rows = arm_instants(s.t, setup.trajectory(), per_period, k);
     let (start, end) = (s.t.len().saturating_sub(per_period.max(1)), s.t.len());
     let mut data = model.data();
     let mut chains = Vec::new();
     for &row in &rows {
-        osrl_dynamics::forward_kinematics(model, &mut data, &s.q[row * n..(row + 1) * n])?;
+        osrl_dynamics::forward_kinematics(model, &mut data, &s.q[row * n..(row + 1) * n])
+            .map_err(|e| crate::ReportError::Draw(format!("arm drawing: {e}")))?;
         let mut pts: Vec<[f64; 3]> = data.world_pose.iter().map(|p| p.trans.into()).collect();
         pts.push(data.ee_pos.into());
         chains.push((row, pts));
@@ -243,7 +208,7 @@ pub fn arm(setup: &Setup, s: &ArmSeries, per_period: usize, k: usize) -> Result<
                 p = p.with(
                     Series::line(&format!("t = {:.2} s", s.t[*row]), line)
                         .color(color)
-                        .style(crate::plot::Style::LineMarkers),
+                        .style(Style::LineMarkers),
                 );
                 if let Some(xd) = desired(*row) {
                     p = p.with(Series::markers("", vec![xd]).color(color).width(6));
@@ -260,8 +225,7 @@ pub fn arm(setup: &Setup, s: &ArmSeries, per_period: usize, k: usize) -> Result<
 #[cfg(test)]
 mod tests {
     use super::*;
-    use osrl_control::{run_closed_loop, Osc, OscConfig, TrajectoryConfig};
-    use osrl_dynamics::{SimConfig, SimRobot};
+    use osrl_control::{ModelError, OscConfig};
 
     /// The arm drawing of an analytical eq. 7 run: each posture is drawn at one step of the last
     /// cycle, its end-effector at the measured `x` of that step, its marked desired point at that
@@ -269,26 +233,26 @@ mod tests {
     #[test]
     fn arm_postures_and_desired_points_are_those_of_one_step() {
         for robot in ["planar3", "sarcos7"] {
-            let setup = Setup::for_robot(robot, TrajectoryConfig::default()).unwrap();
-            let model = &setup.model;
-            let mut osc = Osc::new(model.clone(), OscConfig::default()).unwrap();
-            let mut sim = SimRobot::new(model.clone(), SimConfig::default()).unwrap();
-            sim.reset(&setup.home, &vec![0.0; model.nq()]).unwrap();
+            let setup = Setup::new(robot).unwrap();
+            let model = setup.model();
+            let run = setup
+                .analytical(&OscConfig::default(), &ModelError::default(), 12.0)
+                .unwrap();
             let (axes, m) = (model.task_axes(), model.task_dim());
-            let run = run_closed_loop(&mut sim, &mut osc, &setup.traj, axes, 12.0).unwrap();
             let s = &run.series;
-            let per = (setup.traj.period() / SimConfig::default().control_period).round() as usize;
+            let per = setup.steps_per_period();
             let k = 6;
-            let rows = arm_instants(&s.t, &setup.traj, per, k);
+            let traj = setup.trajectory();
+            let rows = arm_instants(&s.t, traj, per, k);
             assert_eq!(rows.len(), k);
             assert!(rows.iter().all(|&r| r >= s.len() - per && r < s.len()));
             // Instant i is at phase i/k of the path: x_d there is the path's point at path time
             // i·T/k (the first: its start), to within half a control step of motion (< 1 mm).
             // After the start ramp the path time is t − ramp/2.
-            let (ramp, period) = (setup.traj.ramp(), setup.traj.period());
+            let (ramp, period) = (traj.ramp(), traj.period());
             for (i, &r) in rows.iter().enumerate() {
                 let path_t = ramp / 2.0 + period * (1.0 + i as f64 / k as f64);
-                let want = setup.traj.sample(path_t).x;
+                let want = traj.sample(path_t).x;
                 for (j, &a) in axes.iter().enumerate() {
                     let d = (s.x_d[r * m + j] - want[a]).abs();
                     assert!(
@@ -297,7 +261,7 @@ mod tests {
                     );
                 }
             }
-            let x0 = setup.traj.start();
+            let x0 = traj.start();
             assert!(axes
                 .iter()
                 .enumerate()

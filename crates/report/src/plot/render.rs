@@ -2,7 +2,7 @@
 
 use super::series::{draw_lines, draw_series};
 use super::{contour_lines, viridis, Figure, Legend, Panel, Rgb, Series, Style, PALETTE};
-use anyhow::{anyhow, Result};
+use crate::error::{ReportError, Result};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::Path;
@@ -14,8 +14,8 @@ const X_AREA: u32 = 48;
 const Y_AREA: u32 = 70;
 const CAPTION: u32 = 32;
 
-pub(super) fn err<E: std::fmt::Debug>(e: E) -> anyhow::Error {
-    anyhow!("{e:?}")
+pub(super) fn err<E: std::fmt::Debug>(e: E) -> ReportError {
+    ReportError::Draw(format!("{e:?}"))
 }
 
 fn size(fig: &Figure) -> (u32, u32) {
