@@ -10,15 +10,12 @@ use osrl_control::Law;
 use osrl_learn::Variant;
 use std::collections::BTreeMap;
 
+/// E6 of one robot: per variant ([`Variant::key`]), its row.
+pub type AblationRows = BTreeMap<String, Outcome<AblationRow>>;
+
 /// E6 of one robot: per variant ([`Variant::key`]) the final metrics over its seeds, and each
 /// finished variant's learning curves (label, curves) for the figure.
-pub fn e6(
-    jobs: &[JobResult],
-    robot: &str,
-) -> (
-    BTreeMap<String, Outcome<AblationRow>>,
-    Vec<(String, Curves)>,
-) {
+pub fn e6(jobs: &[JobResult], robot: &str) -> (AblationRows, Vec<(String, Curves)>) {
     let (mut rows, mut plotted) = (BTreeMap::new(), Vec::new());
     for v in Variant::ALL {
         let (runs, failed) = select(jobs, robot, v, false);

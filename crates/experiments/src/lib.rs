@@ -16,6 +16,11 @@ pub mod stats;
 pub mod toy;
 
 pub use error::{ExperimentError, Result};
+
+// The root README's Rust examples compile (and the quick ones run) as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../../../README.md")]
+mod root_readme {}
 pub use jobs::{Job, JobResult, Observer, Quiet, Trained};
 pub use reproduce::{reproduce, FigureInputs, Reproduction};
 pub use results::Results;

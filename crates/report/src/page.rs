@@ -182,8 +182,11 @@ fn e7(r: &Results) -> String {
     table(&head, &rows)
 }
 
-/// What each section shows (one line under its heading) and its table.
-const SECTIONS: [(&str, &str, fn(&Results) -> String); 7] = [
+/// A section of the page: key, what it shows (one line under its heading), its table.
+type Section = (&'static str, &'static str, fn(&Results) -> String);
+
+/// The experiments' sections.
+const SECTIONS: [Section; 7] = [
     ("E1", "RWR on the 1-D linear-policy toy problem: adaptive vs fixed reward transformation (paper Fig. 1).", |_| String::new()),
     ("E2", "Analytical operational space control (eq. 4 and eq. 7, N = I) with the true model: the baseline.", e2),
     ("E3", "The learned controller tracking the figure-8 on both robots (paper Fig. 2a/2b, 3b). Final evaluation of each seed, no exploration.", e3),
