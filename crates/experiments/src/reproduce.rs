@@ -70,45 +70,17 @@ pub struct Reproduction {
 /// A failing toy or analytical run (a failed training run is reported in the results instead).
 pub fn reproduce(sizes: &Sizes, quick: bool, observer: &dyn Observer) -> Result<Reproduction> {
     let wall = Instant::now();
-    observer.note(&format!(
-        "E1: RWR toy problem (Fig. 1), {} seeds",
-        sizes.toy_seeds
-    ));
-    let toy_cfg = rwr::toy::ToyConfig {
-        seeds: sizes.toy_seeds,
-        ..rwr::toy::ToyConfig::default()
-    };
-    let e1 = toy::sweep(&toy_cfg)?;
-    let fig1 = toy::fig1(&toy_cfg)?;
+    let (e1, fig1) = run_e1(sizes, observer)?;
     let setups: Vec<(&str, Setup)> = ROBOTS
         .into_iter()
         .map(|r| Ok((r, Setup::new(r)?)))
         .collect::<Result<_>>()?;
-    let cases = analytical::cases(sizes.payload_kg, sizes.analytical_seconds)?;
-    observer.analytical_started(cases.len());
-    let runs = analytical::run_all(&cases, &setups, &|c| observer.analytical_done(c))?;
-    let plan = jobs::plan(sizes);
-    observer.note(&format!(
-        "E3–E7: {} training runs (planar3 {} min, sarcos7 {} min simulated) on {} threads",
-        plan.len(),
-        sizes.planar3.minutes,
-        sizes.sarcos7.minutes,
-        rayon::current_num_threads()
-    ));
-    let done = jobs::run_all(&plan, &setups, sizes, observer);
+    let runs = run_analytical(sizes, &setups, observer)?;
+    let done = run_jobs(sizes, &setups, observer);
     let r = assemble(&done, &runs, &setups);
     let results = Results {
         e1,
-        e2: runs
-            .iter()
-            .filter(|a| a.case.error_key == "none")
-            .map(|a| {
-                (
-                    format!("{}_{}", a.case.robot, a.case.law_name()),
-                    a.row.clone(),
-                )
-            })
-            .collect(),
+        e2: e2(&runs),
         e3: r.e3,
         e4: r.e4,
         e5: r.e5,
@@ -126,19 +98,16 @@ pub fn reproduce(sizes: &Sizes, quick: bool, observer: &dyn Observer) -> Result<
     };
     let figures = FigureInputs {
         toy: fig1,
-        trajectories: setups
-            .iter()
+        trajectories: (setups.iter())
             .map(|(r, s)| (r.to_string(), s.trajectory_config().clone()))
             .collect(),
-        control_period: osrl_dynamics::SimConfig::default().control_period,
+        control_period: setups[0].1.sim().control_period,
         ablation: r.ablation,
     };
-    let failed = done
-        .iter()
+    let failed = (done.iter())
         .filter_map(|j| j.outcome.as_ref().err().map(|e| (j.job.name(), e.clone())))
         .collect();
-    let models = done
-        .into_iter()
+    let models = (done.into_iter())
         .filter_map(|j| Some((j.job.robot.to_string(), j.outcome.ok()?.model?)))
         .collect();
     Ok(Reproduction {
@@ -149,6 +118,56 @@ pub fn reproduce(sizes: &Sizes, quick: bool, observer: &dyn Observer) -> Result<
         models,
         failed,
     })
+}
+
+/// E1: the toy problem's sweep over `sizes.toy_seeds` seeds, and Fig. 1's iterations.
+fn run_e1(sizes: &Sizes, observer: &dyn Observer) -> Result<(rwr::toy::Report, Fig1)> {
+    let seeds = sizes.toy_seeds;
+    observer.note(&format!("E1: RWR toy problem (Fig. 1), {seeds} seeds"));
+    let cfg = rwr::toy::ToyConfig {
+        seeds,
+        ..rwr::toy::ToyConfig::default()
+    };
+    Ok((toy::sweep(&cfg)?, toy::fig1(&cfg)?))
+}
+
+/// The analytical runs of E2 and E7.
+fn run_analytical(
+    sizes: &Sizes,
+    setups: &[(&str, Setup)],
+    observer: &dyn Observer,
+) -> Result<Vec<AnalyticalRun>> {
+    let cases = analytical::cases(sizes.payload_kg, sizes.analytical_seconds)?;
+    observer.analytical_started(cases.len());
+    analytical::run_all(&cases, setups, &|c| observer.analytical_done(c))
+}
+
+/// The training runs of E3–E7.
+fn run_jobs(
+    sizes: &Sizes,
+    setups: &[(&str, Setup)],
+    observer: &dyn Observer,
+) -> Vec<jobs::JobResult> {
+    let plan = jobs::plan(sizes);
+    observer.note(&format!(
+        "E3–E7: {} training runs (planar3 {} min, sarcos7 {} min simulated) on {} threads",
+        plan.len(),
+        sizes.planar3.minutes,
+        sizes.sarcos7.minutes,
+        rayon::current_num_threads()
+    ));
+    jobs::run_all(&plan, setups, sizes, observer)
+}
+
+/// E2: the analytical runs with the true model, keyed `<robot>_<law>`.
+fn e2(runs: &[AnalyticalRun]) -> BTreeMap<String, crate::results::AnalyticalRow> {
+    (runs.iter())
+        .filter(|a| a.case.error_key == "none")
+        .map(|a| {
+            let key = format!("{}_{}", a.case.robot, a.case.law_name());
+            (key, a.row.clone())
+        })
+        .collect()
 }
 
 /// E3–E7 per robot.

@@ -112,6 +112,27 @@ fn field(name: &str, why: impl std::fmt::Display) -> LearnError {
     LearnError::Load(format!("{name}: {why}"))
 }
 
+/// The home posture: one finite value per joint, inside the joint limits.
+fn check_home(home: &[f64], robot: &Model) -> Result<()> {
+    let n = robot.nq();
+    if home.len() != n {
+        return Err(field(
+            "home",
+            format!("{} values for {n} joints", home.len()),
+        ));
+    }
+    let limits = robot.q_min().zip(robot.q_max());
+    for (i, (&q, (lo, hi))) in home.iter().zip(limits).enumerate() {
+        if !q.is_finite() || q < lo || q > hi {
+            return Err(field(
+                "home",
+                format!("joint {i} at {q} rad is not inside its limits [{lo}, {hi}] rad"),
+            ));
+        }
+    }
+    Ok(())
+}
+
 impl ModelInfo {
     /// Checks every field against `learner` and `robot` (the model of [`ModelInfo::robot`]).
     ///
@@ -130,26 +151,7 @@ impl ModelInfo {
                 ),
             ));
         }
-        if self.home.len() != n {
-            return Err(field(
-                "home",
-                format!("{} values for {n} joints", self.home.len()),
-            ));
-        }
-        for (i, ((&q, lo), hi)) in self
-            .home
-            .iter()
-            .zip(robot.q_min())
-            .zip(robot.q_max())
-            .enumerate()
-        {
-            if !q.is_finite() || q < lo || q > hi {
-                return Err(field(
-                    "home",
-                    format!("joint {i} at {q} rad is not inside its limits [{lo}, {hi}] rad"),
-                ));
-            }
-        }
+        check_home(&self.home, robot)?;
         let dt = self.control_period;
         if !CONTROL_PERIOD_RANGE.contains(&dt) {
             return Err(field(

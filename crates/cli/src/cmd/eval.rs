@@ -55,27 +55,28 @@ pub fn run(a: Args) -> Result<()> {
     let mut ev = setup.evaluator(&model)?;
     ev.keep_series = true;
     let res = ev.evaluate(&mut learner).context("evaluation")?;
+    let kind = format!("{:?}", setup.trajectory_config().kind).to_lowercase();
     let mut json = serde_json::to_value(EvalSummary::from(&res))?;
     let o = json
         .as_object_mut()
         .context("an evaluation is a JSON object")?;
-    let kind = format!("{:?}", setup.trajectory_config().kind).to_lowercase();
-    o.insert("robot".into(), model.name().into());
-    o.insert("trajectory".into(), kind.into());
-    o.insert("eval_seconds".into(), ev.seconds.into());
-    o.insert("n_local_models".into(), learner.n_local_models().into());
-    o.insert(
-        "sim_training_minutes".into(),
-        info.sim_training_minutes.into(),
-    );
-    o.insert("counters".into(), serde_json::to_value(learner.stats())?);
     // What one learned command costs on this model (wall time, no exploration).
     let (us50, us99) = (
         ev.series.command_us_quantile(0.5),
         ev.series.command_us_quantile(0.99),
     );
-    o.insert("command_us_median".into(), us50.into());
-    o.insert("command_us_p99".into(), us99.into());
+    for (k, v) in [
+        ("robot", model.name().into()),
+        ("trajectory", kind.into()),
+        ("eval_seconds", ev.seconds.into()),
+        ("n_local_models", learner.n_local_models().into()),
+        ("sim_training_minutes", info.sim_training_minutes.into()),
+        ("counters", serde_json::to_value(learner.stats())?),
+        ("command_us_median", us50.into()),
+        ("command_us_p99", us99.into()),
+    ] {
+        o.insert(k.into(), v);
+    }
     println!(
         "{} · {:?} · {:.1} s · model trained {:.1} simulated minutes · {} local models",
         model.name(),
@@ -87,22 +88,7 @@ pub fn run(a: Args) -> Result<()> {
     if let (Some(a), Some(b)) = (us50, us99) {
         println!("learned command: {a:.2} µs median, {b:.2} µs 99th percentile (wall time)");
     }
-    if !measured(&res) {
-        println!("the evaluation diverged during its warm-up period: no metrics");
-    } else {
-        println!(
-            "tracking RMS {:.3} mm (max {:.3}), command nMSE {:.4}, cost ratio {:.3}, fallback share {:.3}, \
-             largest command step {:.2} N·m (analytical {:.2}){}",
-            res.tracking_rms_mm,
-            res.tracking_max_mm,
-            res.command_nmse,
-            res.command_cost_ratio,
-            res.fallback_share,
-            res.max_command_step,
-            res.max_command_step_analytical,
-            if res.diverged { " — diverged" } else { "" }
-        );
-    }
+    print_metrics(&res);
     if let Some(dir) = &a.out {
         let title = format!(
             "{}: learned vs analytical commands over one cycle",
@@ -117,4 +103,24 @@ pub fn run(a: Args) -> Result<()> {
         print_json(&json);
     }
     Ok(())
+}
+
+/// One line of the evaluation's metrics.
+fn print_metrics(res: &osrl_learn::eval::EvalResult) {
+    if !measured(res) {
+        println!("the evaluation diverged during its warm-up period: no metrics");
+        return;
+    }
+    println!(
+        "tracking RMS {:.3} mm (max {:.3}), command nMSE {:.4}, cost ratio {:.3}, fallback share {:.3}, \
+         largest command step {:.2} N·m (analytical {:.2}){}",
+        res.tracking_rms_mm,
+        res.tracking_max_mm,
+        res.command_nmse,
+        res.command_cost_ratio,
+        res.fallback_share,
+        res.max_command_step,
+        res.max_command_step_analytical,
+        if res.diverged { " — diverged" } else { "" }
+    );
 }
