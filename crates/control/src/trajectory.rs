@@ -179,26 +179,20 @@ impl Trajectory {
     pub fn period(&self) -> f64 {
         self.period
     }
-    /// Control steps of `dt` seconds in one cycle, `period / dt` rounded to the nearest whole
-    /// step (the closed-loop driver's window and the evaluators count whole periods in these);
-    /// 0 when `dt` is not a positive finite number.
-    ///
-    /// ```
-    /// # use osrl_control::TrajectoryConfig;
-    /// let traj = TrajectoryConfig::default().build(&osrl_dynamics::robots::planar3()).unwrap();
-    /// assert_eq!(traj.steps_per_period(0.002), 2000); // the default 4 s figure-8 at 500 Hz
-    /// assert_eq!(traj.steps_per_period(0.0), 0);
-    /// ```
-    pub fn steps_per_period(&self, dt: f64) -> usize {
-        if dt > 0.0 && dt.is_finite() {
-            (self.period / dt).round() as usize
-        } else {
-            0
-        }
-    }
     /// The start ramp (s); 0 for minimum-jerk moves.
     pub fn ramp(&self) -> f64 {
         self.warp.ramp
+    }
+
+    /// Control steps of period `dt` (s) in one period of the path, rounded to the nearest
+    /// whole step (0 when `dt` is not finite and > 0, or the count would not fit).
+    pub fn steps_per_period(&self, dt: f64) -> usize {
+        let k = (self.period() / dt).round();
+        if dt > 0.0 && k.is_finite() && k >= 0.0 && k < usize::MAX as f64 {
+            k as usize
+        } else {
+            0
+        }
     }
 
     /// Desired position, velocity and acceleration at time `t` (s; times before 0 give the start).

@@ -15,7 +15,7 @@
 //! let spec = model.spec();
 //! let tau_max: Vec<f64> = model.tau_max().collect();
 //! let mut lcfg = LearnerConfig::for_robot(&spec.kp, &spec.kd, &spec.q_rest, &tau_max);
-//! lcfg.warmup_samples = 200; // a small warm-up: this example trains for 0.2 simulated minutes
+//! lcfg.guards.warmup_samples = 200; // a small warm-up: this example trains for 0.2 simulated minutes
 //! let tcfg = TrainConfig {
 //!     minutes: 0.2,
 //!     babble: BabbleConfig { minutes: 0.1, ..BabbleConfig::default() },
@@ -211,7 +211,7 @@ mod tests {
         let mut l = c.into_learner();
         l.nominal(meas.q.as_slice(), meas.qd.as_slice(), &mut u0)
             .unwrap();
-        let lim = l.config().torque_limits.clone();
+        let lim = l.config().guards.torque_limits.clone();
         for i in 0..3 {
             assert_eq!(u[i], u0[i].clamp(-lim[i], lim[i]), "joint {i}");
         }

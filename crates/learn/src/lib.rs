@@ -47,12 +47,15 @@ mod saved;
 pub mod train;
 mod variant;
 
-pub use config::{CostKind, ExplorationKind, LearnerConfig, NominalConfig};
+pub use config::{
+    ControllerConfig, CostKind, DynamicsConfig, ExplorationConfig, GravityConfig, GuardConfig,
+    LearnerConfig, NominalConfig, PartitionConfig,
+};
 pub use controller::{LearnedController, SourceCounts};
 pub use error::{LearnError, Result};
 pub use forward::ForwardModel;
 pub use gravity::{GravityModel, StaticGate};
-pub use learner::{CommandSource, Learner, LearnerStats};
+pub use learner::{CommandSource, Learner, LearnerStats, EXTRAPOLATION_CUTOFF};
 pub use local::LocalSummary;
 pub use saved::{
     load_robot, ModelInfo, SavedModel, CONTROL_PERIOD_RANGE, MODEL_MAGIC, MODEL_VERSION,

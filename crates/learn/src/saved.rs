@@ -201,7 +201,7 @@ impl SavedModel {
         }
         let robot = load_robot(&info.robot).map_err(|e| field("robot", e))?;
         info.validate(&learner, &robot)?;
-        if learner.config().torque_limits.is_empty() {
+        if learner.config().guards.torque_limits.is_empty() {
             let tau: Vec<f64> = robot.tau_max().collect();
             learner
                 .set_torque_limits(&LearnerConfig::data_sheet_limits(&tau))

@@ -44,7 +44,7 @@ pub fn write_run(path: &Path, s: &osrl_control::Series, axes: &[usize]) -> Resul
         let mut row = vec![s.t[k]];
         row.extend(xd);
         row.extend(x);
-        row.push(error_mm(xd, x));
+        row.push(1e3 * s.error(k));
         row.extend(&s.q[k * n..(k + 1) * n]);
         row.extend(&s.u[k * n..(k + 1) * n]);
         row
