@@ -24,9 +24,9 @@
 //! babble = { minutes = 4.0 }
 //! ```
 
-use anyhow::{bail, Context, Result};
+use anyhow::{bail, Result};
 use osrl_control::{ModelError, OscConfig, TrajectoryConfig};
-use osrl_dynamics::{Model, SimConfig};
+use osrl_dynamics::SimConfig;
 use osrl_learn::train::TrainConfig;
 use osrl_learn::LearnerConfig;
 use serde::{Deserialize, Serialize};
@@ -64,7 +64,8 @@ pub struct Config {
     /// `osrl simulate` settings.
     pub simulate: SimulateConfig,
     /// The learned controller (`osrl train`). The nominal behaviour's gains and rest posture and
-    /// the torque limits, when left empty, are the robot's ([`Config::learner_for`]).
+    /// the torque limits, when left empty, are the robot's
+    /// ([`osrl_experiments::Setup::with_learner`]).
     pub learner: LearnerConfig,
     /// The training run (`osrl train`): minutes, babbling, task gains, evaluation interval, seed.
     pub train: TrainConfig,
@@ -94,15 +95,15 @@ impl Config {
         crate::util::read_toml(p)
     }
 
-    /// The `[learner]` section for `model`: empty nominal gains, rest posture and torque limits
-    /// filled in from the robot's data sheet, then validated.
-    pub fn learner_for(&self, model: &Model) -> Result<LearnerConfig> {
-        let mut l = self.learner.clone();
-        let spec = model.spec();
-        let tau_max: Vec<f64> = model.tau_max().collect();
-        l.fill_data_sheet(&spec.kp, &spec.kd, &spec.q_rest, &tau_max);
-        l.validate(model.nq()).context("[learner] section")?;
-        Ok(l)
+    /// As [`Config::load`], with the names of the top-level keys and sections the file sets
+    /// (none without a file), so a command can refuse a section it has no use for.
+    pub fn load_with_sections(path: Option<&Path>) -> Result<(Self, Vec<String>)> {
+        let Some(p) = path else {
+            return Ok((Self::default(), Vec::new()));
+        };
+        let cfg: Self = crate::util::read_toml(p)?;
+        let table: toml::Table = crate::util::read_toml(p)?;
+        Ok((cfg, table.keys().cloned().collect()))
     }
 
     /// Checks every section that can be checked without the robot (the trajectory is checked when
@@ -157,11 +158,19 @@ mod tests {
         .unwrap();
         assert_eq!(l.learner.controllers.trained_ess, 20.0);
         assert_eq!((l.train.minutes, l.train.babble.minutes), (3.0, 1.0));
-        let model = osrl_dynamics::robots::planar3();
-        let lc = l.learner_for(&model).unwrap();
-        assert_eq!(lc.nominal.kp, model.spec().kp);
-        assert_eq!(lc.guards.torque_limits, model.tau_max().collect::<Vec<_>>());
-        assert!(toml::from_str::<Config>("[learner]\ncontrollers = { trained_es = 2.0 }").is_err());
+        let setup = osrl_experiments::Setup::new("planar3").unwrap();
+        let lc = setup.with_learner(l.learner.clone()).unwrap();
+        let model = lc.model();
+        assert_eq!(lc.learner_config().nominal.kp, model.spec().kp);
+        assert_eq!(
+            lc.learner_config().guards.torque_limits,
+            model.tau_max().collect::<Vec<_>>()
+        );
+        assert!(toml::from_str::<Config>(
+            "[learner]
+controllers = { trained_es = 2.0 }"
+        )
+        .is_err());
         assert!(toml::from_str::<Config>("[train]\nminutes = -2.0")
             .unwrap()
             .validate()

@@ -5,9 +5,6 @@
 
 mod cmd;
 mod config;
-mod csv;
-mod learned;
-mod plot;
 mod progress;
 mod util;
 
@@ -43,6 +40,8 @@ enum Command {
     Eval(cmd::eval::Args),
     /// Run the experiments and write the report folder (index.html, results.json, figures).
     Reproduce(cmd::reproduce::Args),
+    /// Draw the page of a finished `osrl reproduce` run again, from its folder's data.
+    Report(cmd::report::Args),
     /// Benchmarks: `osrl bench lwpr --json` (LWPR accuracy and µs per update/predict).
     Bench(cmd::bench::Args),
 }
@@ -58,6 +57,7 @@ fn main() {
         Command::Train(a) => cmd::train::run(a),
         Command::Eval(a) => cmd::eval::run(a),
         Command::Reproduce(a) => cmd::reproduce::run(a),
+        Command::Report(a) => cmd::report::run(a),
         Command::Bench(a) => cmd::bench::run(a),
     };
     if let Err(e) = result {

@@ -1,22 +1,22 @@
-//! Small helpers shared by the commands: robot lookup, vector arguments, JSON output.
+//! Small helpers shared by the commands: robot lookup, flag values, JSON output.
 
 use anyhow::{bail, Context, Result};
-use osrl_dynamics::{robots, Model};
+use osrl_control::TrajectoryKind;
+use osrl_dynamics::Model;
 use std::path::Path;
 
 /// A built-in robot by name (`planar3`, `sarcos7`) or a URDF file path.
 pub fn load_robot(spec: &str) -> Result<Model> {
-    if robots::BUILTIN.contains(&spec) {
-        return Ok(robots::by_name(spec)?);
+    Ok(osrl_learn::load_robot(spec)?)
+}
+
+/// Parses a `--trajectory` value (checked by clap: `figure8`, `circle`, `min_jerk`).
+pub fn trajectory_kind(t: &str) -> TrajectoryKind {
+    match t {
+        "circle" => TrajectoryKind::Circle,
+        "min_jerk" => TrajectoryKind::MinJerk,
+        _ => TrajectoryKind::Figure8,
     }
-    let path = Path::new(spec);
-    if spec.ends_with(".urdf") || path.exists() {
-        return osrl_dynamics::urdf::load_urdf(path).map_err(Into::into);
-    }
-    bail!(
-        "unknown robot '{spec}': use {} or a .urdf file",
-        robots::BUILTIN.join(", ")
-    )
 }
 
 /// Parses `v1,v2,...` into exactly `n` finite numbers; the error names the flag.

@@ -1,5 +1,6 @@
 //! `osrl train`, `osrl eval` and `osrl simulate --controller learned:MODEL` end to end on a tiny
-//! training run: the JSON keys of issue 6, the saved model and its sidecar, one-line errors.
+//! training run: the JSON keys of issue 6, the saved model, one-line errors; `osrl train
+//! --config` uses every section it accepts and refuses the others.
 
 mod common;
 use common::{last_json, osrl};
@@ -41,11 +42,12 @@ fn train_eval_simulate_round_trip() {
     }
     assert!((t["sim_training_minutes"].as_f64().unwrap() - 0.2).abs() < 1e-6);
     assert!(!t["learning_curve"].as_array().unwrap().is_empty());
-    let side: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(dir.join("p3.osrl.json")).unwrap()).unwrap();
-    assert_eq!(side["robot"], "planar3");
-    assert_eq!(side["seed"], 3);
-    assert_eq!(side["home"].as_array().unwrap().len(), 3);
+    let saved = osrl_learn::SavedModel::load(&model).unwrap();
+    assert_eq!(saved.info().robot, "planar3");
+    assert_eq!(saved.info().seed, 3);
+    assert_eq!(saved.info().home.len(), 3);
+    assert_eq!(saved.info().control_period, 0.002);
+    assert!(!dir.join("p3.osrl.json").exists(), "one file, no sidecar");
     // eval on the training trajectory, with files.
     let evdir = dir.join("eval");
     let (ok, out, err) = osrl(&[
@@ -95,19 +97,98 @@ fn train_eval_simulate_round_trip() {
         .map(|k| s[k].as_u64().unwrap())
         .sum::<u64>();
     assert_eq!(steps, 4000, "{s}");
-    // Bad input: a too-short evaluation, a corrupted sidecar, a missing model — one-line errors.
+    // Bad input: a too-short evaluation, a corrupted model, a missing model — one-line errors.
     let (ok, _, err) = osrl(&["eval", "--model", m, "--seconds", "3"]);
     assert!(
         !ok && err.contains("two periods") && err.trim().lines().count() == 1,
         "{err}"
     );
-    std::fs::write(dir.join("p3.osrl.json"), "{\"version\": 1}").unwrap();
+    let mut bytes = std::fs::read(&model).unwrap();
+    bytes[40] ^= 0x20;
+    std::fs::write(&model, &bytes).unwrap();
     let (ok, _, err) = osrl(&["eval", "--model", m]);
     assert!(
-        !ok && err.contains("p3.osrl.json") && err.trim().lines().count() == 1,
+        !ok && err.contains("p3.osrl")
+            && err.contains("checksum")
+            && err.trim().lines().count() == 1,
         "{err}"
     );
     let (ok, _, err) = osrl(&["simulate", "--controller", "learned:/nonexistent/x.osrl"]);
     assert!(!ok && err.trim().lines().count() == 1, "{err}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Trains for `minutes` with the config file `toml`; the saved model, or the one-line error.
+fn train_with(
+    dir: &std::path::Path,
+    name: &str,
+    toml: &str,
+    minutes: &str,
+) -> Result<osrl_learn::SavedModel, String> {
+    let cfg = dir.join(format!("{name}.toml"));
+    std::fs::write(&cfg, toml).unwrap();
+    let out = dir.join(format!("{name}.osrl"));
+    let (ok, _, err) = osrl(&[
+        "train",
+        "--config",
+        cfg.to_str().unwrap(),
+        "--minutes",
+        minutes,
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    if !ok {
+        assert_eq!(err.trim().lines().count(), 1, "{err}");
+        return Err(err);
+    }
+    Ok(osrl_learn::SavedModel::load(&out).unwrap())
+}
+
+#[test]
+fn train_uses_the_sim_section_and_refuses_the_sections_it_cannot_use() {
+    let dir = std::env::temp_dir().join(format!("osrl-train-config-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    // The [sim] control period is the learner's: it changes the run and is saved with the model.
+    let fast = train_with(&dir, "fast", "[sim]\ncontrol_period = 0.002\n", "0.1").unwrap();
+    let slow = train_with(&dir, "slow", "[sim]\ncontrol_period = 0.004\n", "0.1").unwrap();
+    assert_eq!(fast.info().control_period, 0.002);
+    assert_eq!(slow.info().control_period, 0.004);
+    // Half the control steps in the same simulated time: half the transitions learned from.
+    let (a, b) = (
+        fast.learner().stats().samples,
+        slow.learner().stats().samples,
+    );
+    assert!(
+        b > 0 && (a as f64 / b as f64 - 2.0).abs() < 0.02,
+        "{a} vs {b} transitions learned from"
+    );
+    // An absurd control period is refused, naming the setting.
+    for dt in ["1e-9", "1e6"] {
+        let err = train_with(
+            &dir,
+            "absurd",
+            &format!("[sim]\ncontrol_period = {dt}\n"),
+            "0.05",
+        )
+        .unwrap_err();
+        assert!(err.contains("control_period"), "{err}");
+    }
+    // Sections that configure other commands are refused, named.
+    for (section, body) in [
+        ("controller", "[controller]\nlaw = \"eq4\"\n"),
+        ("model_error", "[model_error]\nmass_scale = 1.3\n"),
+        ("simulate", "[simulate]\nseconds = 8.0\n"),
+    ] {
+        let err = train_with(&dir, section, body, "0.05").unwrap_err();
+        assert!(
+            err.contains(&format!("[{section}]")) && err.contains("osrl train"),
+            "{err}"
+        );
+    }
+    let err = train_with(&dir, "seed", "[sim]\nseed = 4\n", "0.05").unwrap_err();
+    assert!(
+        err.contains("[sim] seed") && err.contains("[train] seed"),
+        "{err}"
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -225,7 +225,7 @@ where
     }
     let period = traj.period();
     let steps = (seconds / dt).round();
-    let per_period = (period / dt).round() as usize;
+    let per_period = traj.steps_per_period(dt);
     let periods = if steps.is_finite() && steps >= 0.0 {
         (steps as usize).saturating_sub(per_period) / per_period.max(1)
     } else {

@@ -38,6 +38,14 @@ pub enum ControlError {
     /// A model-error description (`--model-error`) cannot be parsed or is out of range.
     #[error("invalid model error '{spec}': {reason}")]
     ModelErrorSpec { spec: String, reason: String },
+    /// A [`crate::TaskController`] defined outside this crate failed (e.g. the learned
+    /// controller of `osrl-learn`, whose error converts into this one): which controller, and
+    /// its error's message.
+    #[error("{controller} controller: {reason}")]
+    Controller {
+        controller: &'static str,
+        reason: String,
+    },
 }
 
 /// Shorthand for results of this crate.

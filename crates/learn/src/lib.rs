@@ -35,6 +35,7 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 mod config;
+mod controller;
 mod error;
 pub mod eval;
 mod forward;
@@ -42,6 +43,7 @@ mod gravity;
 pub mod io;
 mod learner;
 mod local;
+mod saved;
 pub mod train;
 mod variant;
 
@@ -49,9 +51,13 @@ pub use config::{
     ControllerConfig, CostKind, DynamicsConfig, ExplorationConfig, GravityConfig, GuardConfig,
     LearnerConfig, NominalConfig, PartitionConfig,
 };
+pub use controller::{LearnedController, SourceCounts};
 pub use error::{LearnError, Result};
 pub use forward::ForwardModel;
 pub use gravity::{GravityModel, StaticGate};
 pub use learner::{CommandSource, Learner, LearnerStats, EXTRAPOLATION_CUTOFF};
 pub use local::LocalSummary;
+pub use saved::{
+    load_robot, ModelInfo, SavedModel, CONTROL_PERIOD_RANGE, MODEL_MAGIC, MODEL_VERSION,
+};
 pub use variant::Variant;

@@ -2,15 +2,15 @@
 //! test a saved model.
 //!
 //! CSV files have a header row; the first K columns are inputs, the rest outputs (see
-//! [`crate::csv::Table`]). The config is TOML with the parameter names of `shared/LWPR.md` in
+//! `osrl_report::csv::Table`). The config is TOML with the parameter names of `shared/LWPR.md` in
 //! snake case (see `lwpr::LwprConfig`); unknown keys are an error. `norm_in`/`norm_out` may be
 //! `"std"`: the training data's standard deviation per column.
 
-use crate::csv::Table;
 use crate::util;
 use anyhow::{bail, Context, Result};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use lwpr::{Lwpr, LwprConfig};
+use osrl_report::csv::Table;
 use rand::seq::SliceRandom;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;

@@ -1,9 +1,10 @@
-//! One module per subcommand.
+//! One module per subcommand; no command imports another.
 
 pub mod bench;
 pub mod dynamics;
 pub mod eval;
 pub mod lwpr;
+pub mod report;
 pub mod reproduce;
 pub mod robot;
 pub mod simulate;

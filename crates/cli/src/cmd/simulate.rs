@@ -4,23 +4,16 @@
 //! `simulate.csv` (time series), `path.svg/png` (desired vs actual path, error over time),
 //! `metrics.json` and the effective `config.toml`.
 //!
-//! `--controller learned:MODEL` runs a controller saved by `osrl train` instead: the robot and
-//! the trajectory default to the model's (its sidecar), a model error's payload goes on the
-//! simulated robot (the other errors concern an analytical model, which it does not have).
-
-pub mod output;
+//! `--controller learned:MODEL` runs a controller saved by `osrl train` instead: the robot, the
+//! trajectory and the control period default to the model's, a model error's payload goes on
+//! the simulated robot (the other errors concern an analytical model, which it does not have).
 
 use crate::config::Config;
-use crate::learned::{load_model, LearnedController};
-use crate::util::{load_robot, print_json};
+use crate::util::{print_json, trajectory_kind};
 use anyhow::{bail, Context, Result};
-use osrl_control::{
-    check_reachable, run_closed_loop, IkOptions, Law, MetricKind, ModelError, Osc, TaskController,
-    TrajectoryKind,
-};
-use osrl_dynamics::SimRobot;
-pub use output::path_figure;
-use output::write_outputs;
+use osrl_control::{Law, MetricKind, ModelError, Osc};
+use osrl_experiments::Setup;
+use osrl_learn::SavedModel;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -66,20 +59,28 @@ pub struct Args {
     pub json: bool,
 }
 
-/// The config file with the flags applied, validated; with a learned controller, its sidecar's
-/// robot and trajectory are the defaults.
-fn effective_config(a: &Args, learned: Option<&crate::learned::Sidecar>) -> Result<Config> {
+/// The config file with the flags applied, validated; with a learned controller, its robot,
+/// trajectory and control period are the defaults.
+fn effective_config(a: &Args, learned: Option<&SavedModel>) -> Result<Config> {
     let mut cfg = Config::load(a.config.as_deref())?;
-    if let Some(side) = learned {
-        cfg.robot = side.robot.clone();
-        cfg.trajectory = side.trajectory.clone();
-        if a.robot.as_ref().is_some_and(|r| *r != side.robot) {
+    if let Some(info) = learned.map(SavedModel::info) {
+        cfg.robot = info.robot.clone();
+        cfg.trajectory = info.trajectory.clone();
+        if a.robot.as_ref().is_some_and(|r| *r != info.robot) {
             bail!(
                 "--robot {}: the learned controller was trained on {}",
                 a.robot.as_deref().unwrap_or(""),
-                side.robot
+                info.robot
             );
         }
+        let dt = cfg.sim.control_period;
+        if dt != osrl_dynamics::SimConfig::default().control_period && dt != info.control_period {
+            bail!(
+                "[sim] control_period = {dt} s: the learned controller was trained at {} s",
+                info.control_period
+            );
+        }
+        cfg.sim.control_period = info.control_period;
     }
     if let Some(r) = &a.robot {
         cfg.robot = r.clone();
@@ -99,11 +100,7 @@ fn effective_config(a: &Args, learned: Option<&crate::learned::Sidecar>) -> Resu
         };
     }
     if let Some(t) = &a.trajectory {
-        cfg.trajectory.kind = match t.as_str() {
-            "circle" => TrajectoryKind::Circle,
-            "min_jerk" => TrajectoryKind::MinJerk,
-            _ => TrajectoryKind::Figure8,
-        };
+        cfg.trajectory.kind = trajectory_kind(t);
     }
     if let Some(s) = a.seconds {
         cfg.simulate.seconds = s;
@@ -122,44 +119,22 @@ pub fn run(a: Args) -> Result<()> {
         .as_deref()
         .and_then(|c| c.strip_prefix("learned:"))
         .map(PathBuf::from);
-    let loaded = model_path.as_deref().map(load_model).transpose()?;
-    let cfg = effective_config(&a, loaded.as_ref().map(|l| &l.1))?;
-    let model = load_robot(&cfg.robot)?;
-    let traj = cfg.trajectory.build(&model)?;
-    let reach = check_reachable(&model, &traj, &IkOptions::default())?;
+    let loaded = model_path.as_deref().map(SavedModel::load).transpose()?;
+    let cfg = effective_config(&a, loaded.as_ref())?;
+    let setup = Setup::along(&cfg.robot, cfg.trajectory.clone())?.with_sim(cfg.sim.clone())?;
+    let model = setup.model().clone();
     let (sim_model, ctrl_model) = cfg.model_error.apply(&model)?;
-    let mut sim = SimRobot::new(sim_model, cfg.sim.clone())?;
-    sim.reset(&reach.q_start, &vec![0.0; model.nq()])?;
-    let mut learned =
-        loaded.map(|(l, side)| LearnedController::new(l, side.gains, model.task_axes()));
-    if let Some(l) = &learned {
-        let (n, m) = l.learner.dims();
-        if (n, m) != (model.nq(), model.task_dim()) {
-            bail!(
-                "the learned controller has {n} joints and a {m}-D task, {} has {} and {}",
-                model.name(),
-                model.nq(),
-                model.task_dim()
-            );
-        }
-    }
+    let mut learned = loaded.map(SavedModel::controller).transpose()?;
     let mut osc = match learned {
         Some(_) => None,
         None => Some(Osc::new(ctrl_model, cfg.controller.clone())?),
     };
-    let ctrl: &mut dyn TaskController = match (&mut learned, &mut osc) {
-        (Some(l), _) => l,
-        (None, Some(o)) => o,
-        (None, None) => unreachable!("one controller is built"),
-    };
     let wall = Instant::now();
-    let run = run_closed_loop(
-        &mut sim,
-        ctrl,
-        &traj,
-        model.task_axes(),
-        cfg.simulate.seconds,
-    )
+    let run = match (&mut learned, &mut osc) {
+        (Some(l), _) => setup.closed_loop(sim_model, l, cfg.simulate.seconds),
+        (None, Some(o)) => setup.closed_loop(sim_model, o, cfg.simulate.seconds),
+        (None, None) => unreachable!("one controller is built"),
+    }
     .context("closed-loop simulation")?;
     let wall = wall.elapsed().as_secs_f64();
     let m = &run.metrics;
@@ -219,19 +194,21 @@ pub fn run(a: Args) -> Result<()> {
         "real_time_factor".into(),
         (m.sim_seconds / wall.max(1e-9)).into(),
     );
-    obj.insert("q_start".into(), serde_json::to_value(&reach.q_start)?);
+    obj.insert("q_start".into(), serde_json::to_value(setup.home())?);
     if let Some(l) = &learned {
-        let c = l.counts;
-        obj.insert("learned_steps".into(), c[0].into());
-        obj.insert("extrapolated_steps".into(), c[1].into());
-        obj.insert("fallback_steps".into(), c[2].into());
+        let c = l.counts();
+        obj.insert("learned_steps".into(), c.learned.into());
+        obj.insert("extrapolated_steps".into(), c.extrapolated.into());
+        obj.insert("fallback_steps".into(), c.fallback.into());
         println!(
             "learned controller: {} blended, {} extrapolated, {} fallback (u0) steps",
-            c[0], c[1], c[2]
+            c.learned, c.extrapolated, c.fallback
         );
     }
     if let Some(dir) = &a.out {
-        let files = write_outputs(dir, &cfg, &run, &model, &json)?;
+        let axes = model.task_axes();
+        let toml = toml::to_string(&cfg)?;
+        let files = osrl_report::runs::write_simulate(dir, &run.series, axes, &json, &toml)?;
         println!(
             "wrote {}",
             files

@@ -5,11 +5,10 @@
 //! fixed vs adaptive), `toy_iterations.{svg,png}` (iterations to converge vs initial `τ`) and
 //! `toy.json` into `--out`; with `--json` the last stdout line is the report object.
 
-mod figures;
-
 use anyhow::{Context, Result};
-use rayon::prelude::*;
-use rwr::toy::{check_claims, run as run_one, summarize, Report, ToyConfig, Variant};
+use osrl_experiments::toy;
+use osrl_report::figures::toy as figures;
+use rwr::toy::{check_claims, Report, ToyConfig, Variant};
 use std::path::PathBuf;
 
 /// Arguments of `osrl toy`.
@@ -44,28 +43,10 @@ fn load(a: &Args) -> Result<ToyConfig> {
 /// Runs the sweep (in parallel over cases × seeds), prints, plots, writes JSON.
 pub fn run(a: Args) -> Result<()> {
     let cfg = load(&a)?;
-    let cases = cfg.cases();
-    let jobs: Vec<(usize, u64)> = (0..cases.len())
-        .flat_map(|c| (0..cfg.seeds).map(move |s| (c, s)))
-        .collect();
-    let outcomes = jobs
-        .par_iter()
-        .map(|&(c, s)| run_one(&cfg, cases[c], s))
-        .collect::<Result<Vec<_>, _>>()?;
-    let n = cfg.seeds as usize;
-    let results = cases
-        .iter()
-        .enumerate()
-        .map(|(c, &case)| summarize(case, &outcomes[c * n..(c + 1) * n], cfg.max_iters))
-        .collect();
-    let report = Report {
-        results,
-        max_iters: cfg.max_iters,
-        seeds: cfg.seeds,
-    };
+    let report = toy::sweep(&cfg)?;
     print_table(&cfg, &report);
     let mut written = figures::iterations(&cfg, &report, &a.out)?;
-    written.extend(figures::fig1(&cfg, &a.out)?);
+    written.extend(figures::fig1(&toy::fig1(&cfg)?, &a.out)?);
     let json = serde_json::to_string(&report)?;
     let path = a.out.join("toy.json");
     std::fs::write(&path, format!("{json}\n"))

@@ -1,17 +1,22 @@
 //! `osrl train`: trains the learned operational space controller (paper section IV) on the
 //! simulated robot — motor babbling, then on-policy RWR along the trajectory with evaluations —
-//! and saves it as `MODEL` plus the sidecar `MODEL.json` (see `learned.rs`). A progress bar on
-//! stderr shows simulated minutes, the tracking error and the number of local models; with
-//! `--json` the last stdout line has the metrics of issue 6 and the learning curve.
+//! and saves it as one model file (`osrl_learn::SavedModel`). A progress bar on stderr shows
+//! simulated minutes, the tracking error and the number of local models; with `--json` the last
+//! stdout line has the metrics of issue 6 and the learning curve.
+//!
+//! The config file's sections `robot`, `[trajectory]`, `[sim]`, `[learner]` and `[train]` set
+//! the run (the `[sim]` control period is the learner's and is saved with it); `[controller]`,
+//! `[model_error]` and `[simulate]` configure `osrl simulate` and are refused here.
 
 use crate::config::Config;
-use crate::learned::{curve_json, eval_json, save_model, sidecar_path, train_learner, Setup};
 use crate::progress;
-use crate::util::{load_robot, print_json};
-use anyhow::Result;
-use osrl_control::TrajectoryKind;
+use crate::util::{print_json, trajectory_kind};
+use anyhow::{bail, Context, Result};
+use osrl_experiments::stats::{curve_points, measured, EvalSummary};
+use osrl_experiments::Setup;
+use osrl_learn::train::TrainSummary;
 use serde_json::{json, Value};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// Arguments of `osrl train` (flags override the config file).
 #[derive(clap::Args, Debug)]
@@ -22,7 +27,8 @@ pub struct Args {
     /// Trajectory: `figure8`, `circle` or `min_jerk` (default: the config's, figure8).
     #[arg(long, value_parser = ["figure8", "circle", "min_jerk"])]
     pub trajectory: Option<String>,
-    /// TOML config file with `[learner]`, `[train]`, `[trajectory]` sections (see `config.rs`).
+    /// TOML config file with `[trajectory]`, `[sim]`, `[learner]` and `[train]` sections (see
+    /// `config.rs`).
     #[arg(long)]
     pub config: Option<PathBuf>,
     /// Simulated minutes of training, babbling included (default: the config's, 30).
@@ -31,7 +37,7 @@ pub struct Args {
     /// Seed of the babbling, the exploration noise and the simulator (default: the config's, 0).
     #[arg(long)]
     pub seed: Option<u64>,
-    /// Where to save the learned controller (`MODEL` and `MODEL.json`).
+    /// Where to save the learned controller.
     #[arg(long)]
     pub out: PathBuf,
     /// Print the result as one JSON object on the last stdout line.
@@ -39,27 +45,32 @@ pub struct Args {
     pub json: bool,
 }
 
-/// Parses a trajectory flag value (checked by clap).
-pub fn trajectory_kind(t: &str) -> TrajectoryKind {
-    match t {
-        "circle" => TrajectoryKind::Circle,
-        "min_jerk" => TrajectoryKind::MinJerk,
-        _ => TrajectoryKind::Figure8,
-    }
-}
+/// Sections of the config file that configure other commands.
+const NOT_FOR_TRAIN: [(&str, &str); 3] = [
+    ("controller", "the analytical controller of `osrl simulate`; the task gains of training are [train] gains"),
+    ("model_error", "the analytical controller's model (`osrl simulate`); the learner has no model"),
+    ("simulate", "`osrl simulate`'s run length; training runs [train] minutes"),
+];
 
-/// The robot as stored in the sidecar: built-in names as they are, files as absolute paths.
-fn robot_reference(robot: &str) -> String {
-    let p = Path::new(robot);
-    if osrl_dynamics::robots::BUILTIN.contains(&robot) {
-        return robot.into();
+/// The config file with the flags applied; refuses sections `osrl train` has no use for.
+fn config(a: &Args) -> Result<Config> {
+    let (mut cfg, sections) = Config::load_with_sections(a.config.as_deref())?;
+    let file = a.config.as_deref().map(|p| p.display().to_string());
+    for (name, what) in NOT_FOR_TRAIN {
+        if sections.iter().any(|s| s == name) {
+            bail!(
+                "{}: [{name}] has no meaning for `osrl train` (it configures {what}): remove it",
+                file.as_deref().unwrap_or("config")
+            );
+        }
     }
-    std::fs::canonicalize(p).map_or(robot.into(), |a| a.display().to_string())
-}
-
-/// Trains, saves, reports.
-pub fn run(a: Args) -> Result<()> {
-    let mut cfg = Config::load(a.config.as_deref())?;
+    if cfg.sim.seed != 0 {
+        bail!(
+            "{}: [sim] seed = {}: training seeds the simulator with [train] seed (--seed): set that instead",
+            file.as_deref().unwrap_or("config"),
+            cfg.sim.seed
+        );
+    }
     if let Some(r) = &a.robot {
         cfg.robot = r.clone();
     }
@@ -73,74 +84,79 @@ pub fn run(a: Args) -> Result<()> {
         cfg.train.seed = s;
     }
     cfg.validate()?;
-    let model = load_robot(&cfg.robot)?;
-    let lcfg = cfg.learner_for(&model)?;
-    let setup = Setup::new(model.clone(), cfg.trajectory.clone())?;
+    Ok(cfg)
+}
+
+/// Trains, saves, reports.
+pub fn run(a: Args) -> Result<()> {
+    let cfg = config(&a)?;
+    let setup = Setup::along(&cfg.robot, cfg.trajectory.clone())?
+        .with_sim(cfg.sim.clone())?
+        .with_learner(cfg.learner.clone())
+        .context("[learner]")?
+        .with_train(cfg.train.clone())
+        .context("[train]")?;
+    let model = setup.model().clone();
     let minutes = cfg.train.minutes;
     let bar = progress::train_bar(None, &format!("train {}", model.name()), minutes);
-    let (learner, summary) = train_learner(&setup, &model, lcfg, &cfg.train, 2, &mut |p| {
-        progress::update(&bar, minutes, p)
-    })?;
+    let (learner, summary) = setup
+        .train(&model, &mut |p| progress::update(&bar, minutes, p))
+        .context("training")?;
     bar.finish_and_clear();
-    let sidecar = crate::learned::Sidecar {
-        version: crate::learned::SIDECAR_VERSION,
-        robot: robot_reference(&cfg.robot),
-        trajectory: cfg.trajectory.clone(),
-        home: setup.home.clone(),
-        gains: cfg.train.gains,
-        control_period: osrl_dynamics::SimConfig::default().control_period,
-        sim_training_minutes: summary.sim_training_minutes,
-        seed: cfg.train.seed,
-    };
-    save_model(&a.out, &learner, &sidecar)?;
+    setup.saved(learner, &summary)?.save(&a.out)?;
     let last = summary
         .learning_curve
         .last()
         .map(|(_, e)| e.clone())
         .unwrap_or_default();
-    let json = summary_json(&summary, &eval_json(&last), model.name());
-    println!(
-        "{} · {:.1} simulated minutes in {:.1} s ({:.1}× real time) · {} local models · {} episodes ({} aborted)",
-        model.name(),
-        summary.sim_training_minutes,
-        summary.wall_seconds,
-        summary.realtime_factor,
-        summary.n_local_models,
-        summary.episodes,
-        summary.aborted_episodes
-    );
-    if !crate::learned::measured(&last) {
-        println!("the evaluation diverged during its warm-up period: no metrics");
-    } else {
-        println!(
-        "final evaluation: tracking RMS {:.3} mm (max {:.3}), command nMSE {:.4}, cost ratio {:.3}, fallback share {:.3}{}",
-        last.tracking_rms_mm,
-        last.tracking_max_mm,
-        last.command_nmse,
-        last.command_cost_ratio,
-        last.fallback_share,
-        if last.diverged { " — diverged" } else { "" }
-    );
-    }
-    println!(
-        "largest command step during on-policy learning {:.2} N·m (analytical on the path {:.2})",
-        summary.max_command_step, last.max_command_step_analytical
-    );
-    println!(
-        "wrote {} and {}",
-        a.out.display(),
-        sidecar_path(&a.out).display()
-    );
+    print_summary(&summary, &last, model.name(), setup.sim().control_period);
+    println!("wrote {}", a.out.display());
     if a.json {
-        print_json(&json);
+        print_json(&summary_json(
+            &summary,
+            &EvalSummary::from(&last),
+            model.name(),
+        )?);
     }
     Ok(())
 }
 
+fn print_summary(s: &TrainSummary, last: &osrl_learn::eval::EvalResult, robot: &str, dt: f64) {
+    println!(
+        "{robot} · {:.1} simulated minutes at {:.1} ms in {:.1} s ({:.1}× real time) · {} local models · {} episodes ({} aborted)",
+        s.sim_training_minutes,
+        1e3 * dt,
+        s.wall_seconds,
+        s.realtime_factor,
+        s.n_local_models,
+        s.episodes,
+        s.aborted_episodes
+    );
+    if !measured(last) {
+        println!("the evaluation diverged during its warm-up period: no metrics");
+    } else {
+        println!(
+            "final evaluation: tracking RMS {:.3} mm (max {:.3}), command nMSE {:.4}, cost ratio {:.3}, fallback share {:.3}{}",
+            last.tracking_rms_mm,
+            last.tracking_max_mm,
+            last.command_nmse,
+            last.command_cost_ratio,
+            last.fallback_share,
+            if last.diverged { " — diverged" } else { "" }
+        );
+    }
+    println!(
+        "largest command step during on-policy learning {:.2} N·m (analytical on the path {:.2})",
+        s.max_command_step, last.max_command_step_analytical
+    );
+}
+
 /// The JSON of a training run: the final evaluation's metrics, the run's numbers, the curve.
-pub fn summary_json(s: &osrl_learn::train::TrainSummary, final_eval: &Value, robot: &str) -> Value {
-    let mut j = final_eval.clone();
-    let o = j.as_object_mut().expect("eval JSON is an object");
+fn summary_json(s: &TrainSummary, final_eval: &EvalSummary, robot: &str) -> Result<Value> {
+    let mut j = serde_json::to_value(final_eval)?;
+    let o = j
+        .as_object_mut()
+        .context("an evaluation is a JSON object")?;
     let extra = json!({
         "robot": robot,
         "n_local_models": s.n_local_models,
@@ -151,10 +167,10 @@ pub fn summary_json(s: &osrl_learn::train::TrainSummary, final_eval: &Value, rob
         "episodes": s.episodes,
         "aborted_episodes": s.aborted_episodes,
         "counters": s.stats,
-        "learning_curve": curve_json(&s.learning_curve),
+        "learning_curve": curve_points(&s.learning_curve),
     });
-    for (k, v) in extra.as_object().expect("object") {
+    for (k, v) in extra.as_object().into_iter().flatten() {
         o.insert(k.clone(), v.clone());
     }
-    j
+    Ok(j)
 }

@@ -1,0 +1,377 @@
+//! [`Setup`]: the robot, its task trajectory, the home posture at rest on the path start, the
+//! simulator, the learner and the training run — what every experiment, command, example and
+//! test builds before it runs, built in one place.
+
+use crate::error::{ExperimentError, Result};
+use osrl_control::{
+    check_reachable, run_closed_loop, IkOptions, ModelError, Osc, OscConfig, Run, TaskController,
+    Trajectory, TrajectoryConfig,
+};
+use osrl_dynamics::{Model, SimConfig, SimRobot};
+use osrl_learn::eval::Evaluator;
+use osrl_learn::train::{Progress, TrainConfig, TrainSummary};
+use osrl_learn::{Learner, LearnerConfig, ModelInfo, SavedModel, CONTROL_PERIOD_RANGE};
+
+/// A robot with its trajectory, home posture, simulator, learner and training settings, each
+/// checked when it is set (the `with_*` methods rebuild what depends on it).
+///
+/// ```
+/// use osrl_experiments::Setup;
+/// let setup = Setup::new("planar3")?;                  // the default figure-8, 500 Hz
+/// assert_eq!(setup.steps_per_period(), 2000);          // 4 s at 2 ms
+/// let bad = osrl_dynamics::SimConfig { control_period: 1e-9, ..Default::default() };
+/// assert!(setup.clone().with_sim(bad).is_err());       // refused, naming control_period
+/// # Ok::<(), osrl_experiments::ExperimentError>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct Setup {
+    robot: String,
+    model: Model,
+    trajectory: TrajectoryConfig,
+    traj: Trajectory,
+    home: Vec<f64>,
+    sim: SimConfig,
+    learner: LearnerConfig,
+    train: TrainConfig,
+    eval_periods: usize,
+}
+
+fn invalid(m: String) -> ExperimentError {
+    ExperimentError::Invalid(m)
+}
+
+impl Setup {
+    /// The robot `robot` (a built-in name or a URDF file, [`osrl_learn::load_robot`]) with the
+    /// defaults: its default figure-8, the default simulator (2 ms), its data sheet's learner
+    /// config, the default training run, two evaluated periods per evaluation.
+    ///
+    /// # Errors
+    /// An unknown robot, an unreadable URDF, a trajectory the arm cannot follow.
+    pub fn new(robot: &str) -> Result<Self> {
+        Self::along(robot, TrajectoryConfig::default())
+    }
+
+    /// As [`Setup::new`], along the trajectory `trajectory`.
+    ///
+    /// # Errors
+    /// As [`Setup::new`].
+    pub fn along(robot: &str, trajectory: TrajectoryConfig) -> Result<Self> {
+        let model = osrl_learn::load_robot(robot)?;
+        Self::from_model(robot_reference(robot), model, trajectory)
+    }
+
+    /// As [`Setup::along`] for a robot model already loaded; `robot` is how a saved model names
+    /// it (a built-in name, or the URDF file's absolute path).
+    ///
+    /// # Errors
+    /// As [`Setup::new`].
+    pub fn from_model(robot: String, model: Model, trajectory: TrajectoryConfig) -> Result<Self> {
+        let traj = trajectory.build(&model)?;
+        let home = check_reachable(&model, &traj, &IkOptions::default())?.q_start;
+        let learner = data_sheet(&model, LearnerConfig::default())?;
+        Ok(Self {
+            robot,
+            model,
+            trajectory,
+            traj,
+            home,
+            sim: SimConfig::default(),
+            learner,
+            train: TrainConfig::default(),
+            eval_periods: 2,
+        })
+    }
+
+    /// The set-up a saved model was trained in: its robot, trajectory, task gains, control
+    /// period and seed (the home posture is found on the trajectory again, as for training).
+    ///
+    /// # Errors
+    /// As [`Setup::new`].
+    pub fn from_saved(saved: &SavedModel) -> Result<Self> {
+        let info = saved.info();
+        let sim = SimConfig {
+            control_period: info.control_period,
+            ..SimConfig::default()
+        };
+        let train = TrainConfig {
+            gains: info.gains,
+            seed: info.seed,
+            ..TrainConfig::default()
+        };
+        Self::from_model(
+            info.robot.clone(),
+            saved.robot().clone(),
+            info.trajectory.clone(),
+        )?
+        .with_sim(sim)?
+        .with_train(train)
+    }
+
+    /// This set-up along another trajectory (home found again on its start).
+    ///
+    /// # Errors
+    /// A malformed trajectory, or one the arm cannot follow.
+    pub fn with_trajectory(mut self, cfg: TrajectoryConfig) -> Result<Self> {
+        self.traj = cfg.build(&self.model)?;
+        self.home = check_reachable(&self.model, &self.traj, &IkOptions::default())?.q_start;
+        self.trajectory = cfg;
+        Ok(self)
+    }
+
+    /// This set-up with another simulator: its control period is also the learner's.
+    ///
+    /// # Errors
+    /// [`ExperimentError::Invalid`] naming `control_period` outside
+    /// [`osrl_learn::CONTROL_PERIOD_RANGE`] or one that leaves fewer than two steps per
+    /// trajectory period; the simulator's own checks.
+    pub fn with_sim(mut self, sim: SimConfig) -> Result<Self> {
+        sim.validate()?;
+        let dt = sim.control_period;
+        if !CONTROL_PERIOD_RANGE.contains(&dt) {
+            return Err(invalid(format!(
+                "[sim] control_period = {dt} s is not within {}–{} s",
+                CONTROL_PERIOD_RANGE.start(),
+                CONTROL_PERIOD_RANGE.end()
+            )));
+        }
+        if self.traj.steps_per_period(dt) < 2 {
+            return Err(invalid(format!(
+                "[sim] control_period = {dt} s: fewer than two steps per trajectory period"
+            )));
+        }
+        self.sim = sim;
+        Ok(self)
+    }
+
+    /// This set-up with another learner config; empty data-sheet fields (nominal gains, rest
+    /// posture, torque limits) take the robot's.
+    ///
+    /// # Errors
+    /// The config's own checks for this robot.
+    pub fn with_learner(mut self, cfg: LearnerConfig) -> Result<Self> {
+        self.learner = data_sheet(&self.model, cfg)?;
+        Ok(self)
+    }
+
+    /// This set-up with another training run.
+    ///
+    /// # Errors
+    /// The config's own checks, or task gains without a positive `kp`.
+    pub fn with_train(mut self, cfg: TrainConfig) -> Result<Self> {
+        cfg.validate()?;
+        cfg.gains.validate()?;
+        if !(cfg.gains.kp > 0.0) {
+            return Err(invalid(format!(
+                "[train] gains.kp = {}: need kp > 0 (a task without position gain is not tracked)",
+                cfg.gains.kp
+            )));
+        }
+        self.train = cfg;
+        Ok(self)
+    }
+
+    /// This set-up with `periods` evaluated periods per evaluation (after one warm-up period).
+    ///
+    /// # Errors
+    /// [`ExperimentError::Invalid`] for 0.
+    pub fn with_eval_periods(mut self, periods: usize) -> Result<Self> {
+        if periods == 0 {
+            return Err(invalid("evaluated periods must be at least 1".into()));
+        }
+        self.eval_periods = periods;
+        Ok(self)
+    }
+
+    /// The robot as a saved model names it.
+    pub fn robot(&self) -> &str {
+        &self.robot
+    }
+    /// The robot's model (the simulated robot's, without model errors).
+    pub fn model(&self) -> &Model {
+        &self.model
+    }
+    /// The trajectory's config and the trajectory built from it for this robot.
+    pub fn trajectory_config(&self) -> &TrajectoryConfig {
+        &self.trajectory
+    }
+    pub fn trajectory(&self) -> &Trajectory {
+        &self.traj
+    }
+    /// Home posture (rad): at rest on the start of the path.
+    pub fn home(&self) -> &[f64] {
+        &self.home
+    }
+    pub fn sim(&self) -> &SimConfig {
+        &self.sim
+    }
+    pub fn learner_config(&self) -> &LearnerConfig {
+        &self.learner
+    }
+    pub fn train_config(&self) -> &TrainConfig {
+        &self.train
+    }
+    pub fn eval_periods(&self) -> usize {
+        self.eval_periods
+    }
+    /// Control steps per trajectory period ([`Trajectory::steps_per_period`]).
+    pub fn steps_per_period(&self) -> usize {
+        self.traj.steps_per_period(self.sim.control_period)
+    }
+
+    /// The robot carrying an unmodelled payload of `kg` at the end-effector.
+    ///
+    /// # Errors
+    /// A negative or non-finite mass.
+    pub fn with_payload(&self, kg: f64) -> Result<Model> {
+        let error = ModelError {
+            payload: kg,
+            ..ModelError::default()
+        };
+        Ok(error.apply(&self.model)?.0)
+    }
+
+    /// An evaluator on `truth` (this robot, or one with a payload): its own simulator, the
+    /// training's task gains, [`Setup::eval_periods`] evaluated periods after a warm-up one.
+    ///
+    /// # Errors
+    /// A model that does not fit the home posture.
+    pub fn evaluator(&self, truth: &Model) -> Result<Evaluator> {
+        Ok(Evaluator::new(
+            truth.clone(),
+            self.sim.clone(),
+            self.traj.clone(),
+            self.home.clone(),
+            self.train.gains,
+            self.eval_periods,
+        )?)
+    }
+
+    /// Trains a fresh learner on a simulated `truth` robot (this set-up's simulator, its noise
+    /// seeded with the training seed) from rest at home, evaluating it on the same model; the
+    /// learner sees only measurements. `observe` sees each evaluation and episode.
+    ///
+    /// # Errors
+    /// As [`osrl_learn::train::train`].
+    pub fn train(
+        &self,
+        truth: &Model,
+        observe: &mut dyn FnMut(&Progress),
+    ) -> Result<(Learner, TrainSummary)> {
+        let sim_cfg = SimConfig {
+            seed: self.train.seed,
+            ..self.sim.clone()
+        };
+        let mut sim = SimRobot::new(truth.clone(), sim_cfg)?;
+        sim.reset(&self.home, &vec![0.0; truth.nq()])?;
+        let (n, m) = (truth.nq(), truth.task_dim());
+        let dt = self.sim.control_period;
+        let mut learner = Learner::new(n, m, dt, self.learner.clone())?;
+        let mut ev = self.evaluator(truth)?;
+        let axes = truth.task_axes();
+        let mut evaluate = |l: &mut Learner| ev.evaluate(l);
+        let summary = osrl_learn::train::train(
+            &mut sim,
+            &mut learner,
+            &self.traj,
+            axes,
+            &self.train,
+            &mut evaluate,
+            observe,
+        )?;
+        Ok((learner, summary))
+    }
+
+    /// Runs `ctrl` for `seconds` on a simulated `truth` robot (this set-up's simulator) from
+    /// rest at home along the trajectory ([`run_closed_loop`]).
+    ///
+    /// # Errors
+    /// As [`run_closed_loop`].
+    pub fn closed_loop(
+        &self,
+        truth: Model,
+        ctrl: &mut dyn TaskController,
+        seconds: f64,
+    ) -> Result<Run> {
+        let mut sim = SimRobot::new(truth, self.sim.clone())?;
+        sim.reset(&self.home, &vec![0.0; self.model.nq()])?;
+        let axes = self.model.task_axes();
+        Ok(run_closed_loop(&mut sim, ctrl, &self.traj, axes, seconds)?)
+    }
+
+    /// The analytical controller `osc` (eq. 4 or eq. 7) whose model has `error`, on the robot
+    /// (carrying the error's payload, if any) for `seconds`.
+    ///
+    /// # Errors
+    /// As [`Setup::closed_loop`], or a model error or controller config out of range.
+    pub fn analytical(&self, osc: &OscConfig, error: &ModelError, seconds: f64) -> Result<Run> {
+        let (sim_model, ctrl_model) = error.apply(&self.model)?;
+        let mut ctrl = Osc::new(ctrl_model, osc.clone())?;
+        self.closed_loop(sim_model, &mut ctrl, seconds)
+    }
+
+    /// `learner`, trained in this set-up as `summary` says, as a saved model.
+    ///
+    /// # Errors
+    /// As [`SavedModel::new`].
+    pub fn saved(&self, learner: Learner, summary: &TrainSummary) -> Result<SavedModel> {
+        let info = ModelInfo {
+            robot: self.robot.clone(),
+            trajectory: self.trajectory.clone(),
+            home: self.home.clone(),
+            gains: self.train.gains,
+            control_period: self.sim.control_period,
+            sim_training_minutes: summary.sim_training_minutes,
+            seed: self.train.seed,
+        };
+        Ok(SavedModel::new(info, learner)?)
+    }
+}
+
+/// `cfg` with its empty data-sheet fields filled from `model`, checked for it.
+fn data_sheet(model: &Model, mut cfg: LearnerConfig) -> Result<LearnerConfig> {
+    let spec = model.spec();
+    let tau_max: Vec<f64> = model.tau_max().collect();
+    cfg.fill_data_sheet(&spec.kp, &spec.kd, &spec.q_rest, &tau_max);
+    cfg.validate(model.nq())?;
+    Ok(cfg)
+}
+
+/// A robot spec as a saved model records it: built-in names as they are, files as absolute
+/// paths (so the model can be used from another folder).
+fn robot_reference(robot: &str) -> String {
+    if osrl_dynamics::robots::BUILTIN.contains(&robot) {
+        return robot.into();
+    }
+    std::fs::canonicalize(robot).map_or(robot.into(), |a| a.display().to_string())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_setting_is_checked_and_the_control_period_is_the_learners() {
+        let s = Setup::new("planar3").unwrap();
+        assert_eq!(s.home().len(), 3);
+        assert_eq!(s.learner_config().nominal.kp, s.model().spec().kp);
+        let sim = |dt| SimConfig {
+            control_period: dt,
+            ..SimConfig::default()
+        };
+        for dt in [1e-9, 1e6, f64::NAN, -0.002] {
+            assert!(s.clone().with_sim(sim(dt)).is_err(), "{dt}");
+        }
+        let s4 = s.clone().with_sim(sim(0.004)).unwrap();
+        assert_eq!(s4.steps_per_period(), 1000);
+        let bad = TrainConfig {
+            minutes: -1.0,
+            ..TrainConfig::default()
+        };
+        assert!(s.clone().with_train(bad).is_err());
+        assert!(s.clone().with_eval_periods(0).is_err());
+        assert!(Setup::new("planar4").is_err());
+        let mut l = LearnerConfig::default();
+        l.nominal.kp = vec![1.0; 2];
+        assert!(s.clone().with_learner(l).is_err());
+    }
+}

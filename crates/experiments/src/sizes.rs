@@ -1,0 +1,97 @@
+//! The sizes of the experiments (`osrl reproduce`): one struct with the full and the `--quick`
+//! values, recorded in `results.json` under `config.sizes`.
+
+use serde::{Deserialize, Serialize};
+
+/// Training size of one robot.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RobotSizes {
+    /// Simulated training minutes, babbling included.
+    pub minutes: f64,
+    /// Babbling minutes; `None` = the training driver's default.
+    pub babble_minutes: Option<f64>,
+    /// Evaluate (learning-curve point) every this many simulated minutes.
+    pub eval_every_minutes: f64,
+}
+
+/// Everything the experiments scale.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Sizes {
+    /// Seeds per case of the RWR toy problem (E1).
+    pub toy_seeds: u64,
+    /// Training seeds of the learned controller per robot (E3, E5; E4 shows seed 0).
+    pub learned_seeds: u64,
+    /// Training seeds per ablation variant and robot (E6) and per payload run (E7).
+    pub ablation_seeds: u64,
+    /// Simulated seconds of each analytical run (E2, E7), whole periods, the first a warm-up.
+    pub analytical_seconds: f64,
+    /// Evaluated periods of the trajectory per evaluation of a learned controller (after one
+    /// warm-up period).
+    pub eval_periods: usize,
+    /// Unmodelled payload of E7 (kg).
+    pub payload_kg: f64,
+    /// Postures drawn along the figure-8 in the arm drawing (Fig. 2a).
+    pub arm_instants: usize,
+    /// Training sizes of the 3-DOF planar arm.
+    pub planar3: RobotSizes,
+    /// Training sizes of the 7-DOF SARCOS arm.
+    pub sarcos7: RobotSizes,
+}
+
+impl Sizes {
+    /// The full run (the paper's training times: 30 min planar3, 60 min sarcos7; issue 6's
+    /// three seeds).
+    pub fn full() -> Self {
+        Self {
+            toy_seeds: 30,
+            learned_seeds: 3,
+            ablation_seeds: 1,
+            analytical_seconds: 12.0,
+            eval_periods: 2,
+            payload_kg: 0.5,
+            arm_instants: 6,
+            planar3: RobotSizes {
+                minutes: 30.0,
+                babble_minutes: None,
+                eval_every_minutes: 2.0,
+            },
+            sarcos7: RobotSizes {
+                minutes: 60.0,
+                babble_minutes: None,
+                eval_every_minutes: 4.0,
+            },
+        }
+    }
+
+    /// `--quick`: everything small (CI, under 3 minutes on 2 cores).
+    pub fn quick() -> Self {
+        Self {
+            toy_seeds: 5,
+            learned_seeds: 2,
+            ablation_seeds: 1,
+            analytical_seconds: 8.0,
+            eval_periods: 1,
+            payload_kg: 0.5,
+            arm_instants: 6,
+            planar3: RobotSizes {
+                minutes: 5.0,
+                babble_minutes: Some(2.0),
+                eval_every_minutes: 1.0,
+            },
+            sarcos7: RobotSizes {
+                minutes: 3.0,
+                babble_minutes: Some(1.5),
+                eval_every_minutes: 1.0,
+            },
+        }
+    }
+
+    /// The sizes of a robot by name (`sarcos7`; any other name: `planar3`'s).
+    pub fn robot(&self, name: &str) -> &RobotSizes {
+        if name == "sarcos7" {
+            &self.sarcos7
+        } else {
+            &self.planar3
+        }
+    }
+}

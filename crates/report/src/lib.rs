@@ -1,0 +1,14 @@
+#![doc = include_str!("../README.md")]
+
+pub mod csv;
+mod error;
+pub mod figures;
+pub mod folder;
+pub mod page;
+pub mod plot;
+pub mod runs;
+pub mod series;
+mod summary;
+
+pub use error::{ReportError, Result};
+pub use folder::{render, write_data, write_report, Page};
