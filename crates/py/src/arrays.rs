@@ -34,9 +34,24 @@ impl Vector<'_> {
     }
 }
 
-/// `"int64 array of shape (3, 2)"`: what a wrong array is, for error messages.
+/// A shape as Python prints it: `(3, 2)`, `(3,)`.
+fn shape_str(shape: &[usize]) -> String {
+    match shape {
+        [n] => format!("({n},)"),
+        _ => format!(
+            "({})",
+            shape
+                .iter()
+                .map(|n| n.to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    }
+}
+
+/// `"a int64 array of shape (3, 2)"`: what a wrong array is, for error messages.
 fn describe(a: &Bound<'_, PyUntypedArray>) -> String {
-    format!("a {} array of shape {:?}", a.dtype(), a.shape())
+    format!("a {} array of shape {}", a.dtype(), shape_str(a.shape()))
 }
 
 fn type_name(obj: &Bound<'_, PyAny>) -> String {
@@ -112,7 +127,7 @@ pub fn matrix(what: &str, obj: &Bound<'_, PyAny>, cols: usize) -> PyResult<Matri
         let rows = match shape[..] {
             [n, c] if c == cols => n,
             [n] if cols == 1 => n,
-            _ => return Err(shape_err(format!("shape {shape:?}"))),
+            _ => return Err(shape_err(format!("shape {}", shape_str(&shape)))),
         };
         // Row-major whatever the strides (iteration is in logical order).
         (rows, r.as_array().iter().copied().collect::<Vec<f64>>())
