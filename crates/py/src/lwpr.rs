@@ -4,7 +4,7 @@
 //! row first), so an exception leaves the model as it was. The single-sample calls keep the
 //! GIL (they take about a microsecond); batches, `save` and `load` release it.
 
-use crate::arrays::{matrix, out1, out2, vector, Matrix};
+use crate::arrays::{matrix, out1, out2, read_into, Matrix};
 use crate::arrays::{Arr1, Arr2};
 use crate::config;
 use crate::errors::{io_err, lwpr_err};
@@ -19,6 +19,9 @@ use std::path::{Path, PathBuf};
 #[pyclass(name = "Lwpr", module = "osrl")]
 pub struct PyLwpr {
     model: Lwpr,
+    /// Input buffers of the single-sample calls ([`read_into`]).
+    xb: Vec<f64>,
+    yb: Vec<f64>,
     /// Output buffers of the single-sample calls.
     y: Vec<f64>,
     conf: Vec<f64>,
@@ -30,6 +33,8 @@ impl PyLwpr {
         let (n_in, n_out) = (model.n_in(), model.n_out());
         PyLwpr {
             model,
+            xb: Vec::with_capacity(n_in),
+            yb: Vec::with_capacity(n_out),
             y: vec![0.0; n_out],
             conf: vec![0.0; n_out],
             jac: vec![0.0; n_out * n_in],
@@ -122,9 +127,10 @@ impl PyLwpr {
         x: &Bound<'py, PyAny>,
         y: &Bound<'py, PyAny>,
     ) -> PyResult<Arr1<'py>> {
-        let (xv, yv) = (vector("x", x)?, vector("y", y)?);
+        read_into("x", x, &mut self.xb)?;
+        read_into("y", y, &mut self.yb)?;
         self.model
-            .update(xv.as_slice(), yv.as_slice())
+            .update(&self.xb, &self.yb)
             .map_err(|e| lwpr_err(e, None))?;
         self.model.drain_events().for_each(drop);
         Ok(out1(py, self.model.last_update_prediction()))
@@ -174,12 +180,12 @@ impl PyLwpr {
         x: &Bound<'py, PyAny>,
         strict: bool,
     ) -> PyResult<Arr1<'py>> {
-        let xv = vector("x", x)?;
+        read_into("x", x, &mut self.xb)?;
         let res = if strict {
-            self.model.predict(xv.as_slice(), &mut self.y).map(drop)
+            self.model.predict(&self.xb, &mut self.y).map(drop)
         } else {
             self.model
-                .predict_with_support(xv.as_slice(), &mut self.y, &mut self.conf)
+                .predict_with_support(&self.xb, &mut self.y, &mut self.conf)
         };
         res.map_err(|e| lwpr_err(e, None))?;
         Ok(out1(py, &self.y))
@@ -226,18 +232,18 @@ impl PyLwpr {
         py: Python<'py>,
         x: &Bound<'py, PyAny>,
     ) -> PyResult<(Arr1<'py>, Arr1<'py>)> {
-        let xv = vector("x", x)?;
+        read_into("x", x, &mut self.xb)?;
         self.model
-            .predict_conf(xv.as_slice(), &mut self.y, &mut self.conf)
+            .predict_conf(&self.xb, &mut self.y, &mut self.conf)
             .map_err(|e| lwpr_err(e, None))?;
         Ok((out1(py, &self.y), out1(py, &self.conf)))
     }
 
     /// The Jacobian `∂ŷ/∂x` at `x`, shape `(n_out, n_in)`.
     fn jacobian<'py>(&mut self, py: Python<'py>, x: &Bound<'py, PyAny>) -> PyResult<Arr2<'py>> {
-        let xv = vector("x", x)?;
+        read_into("x", x, &mut self.xb)?;
         self.model
-            .predict_jacobian(xv.as_slice(), &mut self.y, &mut self.jac)
+            .predict_jacobian(&self.xb, &mut self.y, &mut self.jac)
             .map_err(|e| lwpr_err(e, None))?;
         let (n_in, n_out) = (self.model.n_in(), self.model.n_out());
         Ok(out2(py, n_out, n_in, self.jac.clone()))
