@@ -211,3 +211,23 @@ def test_batches_release_the_gil():
     t.join()
     during = sum(t0 < s < t1 for s in ticks)
     assert during > 100, f"{during} ticks of the other thread during {t1 - t0:.3f} s"
+
+
+def test_concurrent_call_during_a_batch_raises():
+    """The model is borrowed while a batch runs without the GIL: another thread's call on the
+    same model raises RuntimeError instead of racing."""
+    rng = np.random.default_rng(7)
+    x = rng.uniform(-1, 1, (100000, 2))
+    y = np.sin(3 * x[:, :1])
+    m = osrl.Lwpr(2, 1, init_d=20.0)
+    errors = []
+    t = threading.Thread(target=lambda: m.update_batch(x, y))
+    t.start()
+    while t.is_alive():
+        try:
+            m.update(np.zeros(2), np.zeros(1))
+        except RuntimeError as e:
+            errors.append(e)
+            break
+    t.join()
+    assert errors, "no call overlapped the batch"
