@@ -18,7 +18,7 @@
 //! [simulate]
 //! seconds = 12.0
 //! [learner]               # osrl_learn::LearnerConfig (`osrl train`); empty nominal, torque_limits = robot's
-//! min_ess = 50.0
+//! controllers = { trained_ess = 50.0 }
 //! [train]                 # osrl_learn::train::TrainConfig (`osrl train`)
 //! minutes = 30.0
 //! babble = { minutes = 4.0 }
@@ -152,16 +152,16 @@ mod tests {
         let bad: Config = toml::from_str("[simulate]\nseconds = -1.0").unwrap();
         assert!(bad.validate().is_err());
         let l: Config = toml::from_str(
-            "[learner]\nmin_ess = 20.0\n[train]\nminutes = 3.0\nbabble = { minutes = 1.0 }",
+            "[learner]\ncontrollers = { trained_ess = 20.0 }\n[train]\nminutes = 3.0\nbabble = { minutes = 1.0 }",
         )
         .unwrap();
-        assert_eq!(l.learner.min_ess, 20.0);
+        assert_eq!(l.learner.controllers.trained_ess, 20.0);
         assert_eq!((l.train.minutes, l.train.babble.minutes), (3.0, 1.0));
         let model = osrl_dynamics::robots::planar3();
         let lc = l.learner_for(&model).unwrap();
         assert_eq!(lc.nominal.kp, model.spec().kp);
-        assert_eq!(lc.torque_limits, model.tau_max().collect::<Vec<_>>());
-        assert!(toml::from_str::<Config>("[learner]\nmin_es = 2.0").is_err());
+        assert_eq!(lc.guards.torque_limits, model.tau_max().collect::<Vec<_>>());
+        assert!(toml::from_str::<Config>("[learner]\ncontrollers = { trained_es = 2.0 }").is_err());
         assert!(toml::from_str::<Config>("[train]\nminutes = -2.0")
             .unwrap()
             .validate()

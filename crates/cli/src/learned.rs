@@ -92,7 +92,7 @@ pub fn load_model(path: &Path) -> Result<(Learner, Sidecar)> {
         );
     }
     // A controller saved without torque limits gets its robot's (data sheet).
-    if learner.config().torque_limits.is_empty() {
+    if learner.config().guards.torque_limits.is_empty() {
         let model = load_robot(&sc.robot)?;
         let tau_max: Vec<f64> = model.tau_max().collect();
         learner

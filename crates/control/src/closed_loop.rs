@@ -3,9 +3,10 @@
 
 use crate::controller::TaskController;
 use crate::error::{ControlError, Result};
-use crate::trajectory::Trajectory;
-use osrl_dynamics::Robot;
+use crate::trajectory::{Target, Trajectory};
+use osrl_dynamics::{Measurement, Robot};
 use serde::{Deserialize, Serialize};
+use std::ops::ControlFlow;
 
 /// Time series of one run, one row per control step (row-major flat vectors).
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -84,12 +85,125 @@ pub struct Run {
     pub q_final: Vec<f64>,
 }
 
+/// One control step as the driver shows it to a [`StepObserver`]: the measurement at time `t`,
+/// the target `traj.sample(t)` and the command about to be applied for one control period.
+#[derive(Clone, Copy, Debug)]
+pub struct StepView<'a> {
+    /// Index of the step (0 for the first).
+    pub k: usize,
+    pub meas: &'a Measurement,
+    pub target: &'a Target,
+    pub u: &'a [f64],
+}
+
+/// Watches a closed-loop run step by step; may stop it. It also sees the controller, so it can
+/// ask it (or the model behind it) about the step it just commanded.
+pub trait StepObserver<C: ?Sized> {
+    /// Called after the command of each step and before it is applied.
+    /// `ControlFlow::Break` ends the run before this step's command is applied.
+    ///
+    /// # Errors
+    /// Any error ends the run and is returned by [`drive`].
+    fn observe(&mut self, ctrl: &mut C, step: &StepView) -> Result<ControlFlow<()>>;
+}
+
+/// How a run driven by [`drive`] ended.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Ended {
+    /// All steps were applied.
+    Completed,
+    /// The observer stopped it at step `k` (not applied).
+    Stopped { k: usize },
+    /// The robot refused the command of step `k` (e.g. a diverged simulation).
+    RobotFailed { k: usize, error: ControlError },
+}
+
+/// Runs `ctrl` on `robot` along `traj` for `steps` control periods from the robot's current
+/// state: each step reads the measurement at time `t`, asks for the command for
+/// `traj.sample(t)`, shows the step to `obs` and applies the command for one period.
+///
+/// # Errors
+/// The first controller or observer error; a robot that refuses a command ends the run with
+/// [`Ended::RobotFailed`] instead.
+pub fn drive<R, C, O>(
+    robot: &mut R,
+    ctrl: &mut C,
+    traj: &Trajectory,
+    steps: usize,
+    obs: &mut O,
+) -> Result<Ended>
+where
+    R: Robot + ?Sized,
+    C: TaskController + ?Sized,
+    O: StepObserver<C> + ?Sized,
+{
+    let mut u = vec![0.0; robot.dof()];
+    for k in 0..steps {
+        let meas = robot.measurement();
+        let target = traj.sample(meas.t);
+        ctrl.command(meas, &target, &mut u)?;
+        let view = StepView {
+            k,
+            meas,
+            target: &target,
+            u: &u,
+        };
+        if obs.observe(ctrl, &view)?.is_break() {
+            return Ok(Ended::Stopped { k });
+        }
+        if let Err(e) = robot.step(&u) {
+            return Ok(Ended::RobotFailed { k, error: e.into() });
+        }
+    }
+    Ok(Ended::Completed)
+}
+
+/// Records the series of a run and counts limits and saturation (the observer of
+/// [`run_closed_loop`]).
+struct Recorder {
+    s: Series,
+    task_axes: Vec<usize>,
+    q_min: Vec<f64>,
+    q_max: Vec<f64>,
+    tau_max: Vec<f64>,
+    limit_steps: usize,
+    sat_steps: usize,
+    margin: f64,
+    first_limit: Option<f64>,
+}
+
+impl<C: ?Sized> StepObserver<C> for Recorder {
+    fn observe(&mut self, _: &mut C, step: &StepView) -> Result<ControlFlow<()>> {
+        let (meas, u, s) = (step.meas, step.u, &mut self.s);
+        s.t.push(meas.t);
+        s.x_d
+            .extend(self.task_axes.iter().map(|&a| step.target.x[a]));
+        s.x.extend(meas.x.iter());
+        s.q.extend(meas.q.iter());
+        s.u.extend(u);
+        let mut at_limit = false;
+        for i in 0..s.n {
+            let d = (meas.q[i] - self.q_min[i]).min(self.q_max[i] - meas.q[i]);
+            self.margin = self.margin.min(d);
+            at_limit |= d <= 1e-9;
+        }
+        self.limit_steps += at_limit as usize;
+        if at_limit && self.first_limit.is_none() {
+            self.first_limit = Some(meas.t);
+        }
+        self.sat_steps += u.iter().zip(&self.tau_max).any(|(v, l)| v.abs() > *l) as usize;
+        Ok(ControlFlow::Continue(()))
+    }
+}
+
 /// Runs `ctrl` on `robot` along `traj` for `seconds` of simulated time (rounded to whole control
 /// periods), from the robot's current state (reset it at rest on the path first, e.g. at
-/// [`crate::Reach::q_start`]). Each step reads the measurement at time `t`, asks for the
-/// command for `traj.sample(t)` and applies it for one control period. `task_axes` are the world
-/// axes of the measured task coordinates. Fails if `seconds` does not cover at least two periods
-/// (one warm-up, one evaluated), or with the first controller or robot error.
+/// [`crate::Reach::q_start`]), recording the series and measuring the tracking ([`drive`] with a
+/// recorder). `task_axes` are the world axes of the measured task coordinates.
+///
+/// # Errors
+/// If `seconds` does not cover at least two periods (one warm-up, one evaluated), or the first
+/// controller or robot error.
 pub fn run_closed_loop<R, C>(
     robot: &mut R,
     ctrl: &mut C,
@@ -126,54 +240,41 @@ where
     }
     let steps = steps as usize;
     let (q_min, q_max) = robot.joint_limits();
-    let (q_min, q_max) = (q_min.to_vec(), q_max.to_vec());
-    let tau_max = robot.torque_limits().to_vec();
-    let mut s = Series {
-        n,
-        m,
-        ..Series::default()
+    let mut rec = Recorder {
+        s: Series {
+            n,
+            m,
+            ..Series::default()
+        },
+        task_axes: task_axes.to_vec(),
+        q_min: q_min.to_vec(),
+        q_max: q_max.to_vec(),
+        tau_max: robot.torque_limits().to_vec(),
+        limit_steps: 0,
+        sat_steps: 0,
+        margin: f64::INFINITY,
+        first_limit: None,
     };
+    let s = &mut rec.s;
     s.t.reserve(steps);
     s.x_d.reserve(steps * m);
     s.x.reserve(steps * m);
     s.q.reserve(steps * n);
     s.u.reserve(steps * n);
-    let mut u = vec![0.0; n];
-    let (mut limit_steps, mut sat_steps, mut margin) = (0, 0, f64::INFINITY);
-    let mut first_limit = None;
-    for _ in 0..steps {
-        let meas = robot.measurement();
-        let target = traj.sample(meas.t);
-        ctrl.command(meas, &target, &mut u)?;
-        s.t.push(meas.t);
-        s.x_d.extend(task_axes.iter().map(|&a| target.x[a]));
-        s.x.extend(meas.x.iter());
-        s.q.extend(meas.q.iter());
-        s.u.extend(&u);
-        let mut at_limit = false;
-        for i in 0..n {
-            let d = (meas.q[i] - q_min[i]).min(q_max[i] - meas.q[i]);
-            margin = margin.min(d);
-            at_limit |= d <= 1e-9;
-        }
-        limit_steps += at_limit as usize;
-        if at_limit && first_limit.is_none() {
-            first_limit = Some(meas.t);
-        }
-        sat_steps += u.iter().zip(&tau_max).any(|(v, l)| v.abs() > *l) as usize;
-        robot.step(&u)?;
+    if let Ended::RobotFailed { error, .. } = drive(robot, ctrl, traj, steps, &mut rec)? {
+        return Err(error);
     }
     let q_final = robot.measurement().q.as_slice().to_vec();
-    let metrics = evaluate(&s, &q_final, per_period, periods, steps as f64 * dt);
+    let metrics = evaluate(&rec.s, &q_final, per_period, periods, steps as f64 * dt);
     Ok(Run {
         metrics: Metrics {
-            min_limit_margin_rad: margin,
-            limit_steps,
-            first_limit_s: first_limit,
-            torque_saturation_steps: sat_steps,
+            min_limit_margin_rad: rec.margin,
+            limit_steps: rec.limit_steps,
+            first_limit_s: rec.first_limit,
+            torque_saturation_steps: rec.sat_steps,
             ..metrics
         },
-        series: s,
+        series: rec.s,
         q_final,
     })
 }

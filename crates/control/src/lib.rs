@@ -31,7 +31,9 @@ mod trajectory;
 mod trajectory_config;
 mod warp;
 
-pub use closed_loop::{run_closed_loop, Metrics, Run, Series};
+pub use closed_loop::{
+    drive, run_closed_loop, Ended, Metrics, Run, Series, StepObserver, StepView,
+};
 pub use config::{Law, MetricKind, OscConfig};
 pub use controller::TaskController;
 pub use damping::damping;
@@ -40,7 +42,7 @@ pub use ik::{check_reachable, solve_ik, IkOptions, Reach};
 pub use model_error::ModelError;
 pub use nominal::nominal_command;
 pub use osc::{CommandInfo, Osc};
-pub use reference::{reference_acceleration, TaskGains};
+pub use reference::{reference_acceleration, task_error, TaskGains};
 pub use trajectory::{Shape, Target, Trajectory};
 pub use trajectory_config::{TrajectoryConfig, TrajectoryKind};
 pub use warp::TimeWarp;

@@ -53,3 +53,14 @@ pub fn reference_acceleration(
             target.xdd[a] + gains.kd * (target.xd[a] - xd[k]) + gains.kp * (target.x[a] - x[k]);
     }
 }
+
+/// The tracking error `‖x − x_d‖` (m) of the measured task position `x` (one entry per task
+/// axis in `axes`, the world axes of the task coordinates) against `target`.
+#[inline]
+pub fn task_error(target: &Target, axes: &[usize], x: &[f64]) -> f64 {
+    axes.iter()
+        .enumerate()
+        .map(|(k, &a)| (x[k] - target.x[a]).powi(2))
+        .sum::<f64>()
+        .sqrt()
+}

@@ -184,6 +184,17 @@ impl Trajectory {
         self.warp.ramp
     }
 
+    /// Control steps of period `dt` (s) in one period of the path, rounded to the nearest
+    /// whole step (0 when `dt` is not finite and > 0, or the count would not fit).
+    pub fn steps_per_period(&self, dt: f64) -> usize {
+        let k = (self.period() / dt).round();
+        if dt > 0.0 && k.is_finite() && k >= 0.0 && k < usize::MAX as f64 {
+            k as usize
+        } else {
+            0
+        }
+    }
+
     /// Desired position, velocity and acceleration at time `t` (s; times before 0 give the start).
     pub fn sample(&self, t: f64) -> Target {
         match &self.shape {

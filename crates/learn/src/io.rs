@@ -20,17 +20,14 @@ pub mod lwpr_bytes {
 
 use crate::config::LearnerConfig;
 use crate::error::{LearnError, Result};
-use crate::forward::ForwardModel;
-use crate::gravity::GravityModel;
-use crate::learner::{Learner, LearnerStats};
-use crate::local::LocalControllers;
+use crate::learner::{Learner, LearnerStats, Models, State};
 use osrl_dynamics::Measurement;
 use serde::{Deserialize, Serialize};
 
 /// First bytes of a saved learned controller.
 pub const MAGIC: &[u8; 8] = b"OSRLLC\0\0";
 /// Version of the saved format; files of another version are refused.
-pub const FORMAT_VERSION: u32 = 5;
+pub const FORMAT_VERSION: u32 = 6;
 
 /// Everything a learner is, as stored (the config as JSON text, so its untagged enums survive).
 #[derive(Serialize, Deserialize)]
@@ -39,12 +36,8 @@ struct Saved {
     n: usize,
     m: usize,
     dt: f64,
-    torque_scale: Vec<f64>,
-    gravity: Option<GravityModel>,
-    gravity_static: Option<GravityModel>,
-    forward: Option<ForwardModel>,
-    locals: LocalControllers,
-    warm: Vec<Measurement>,
+    warm_up: Vec<Measurement>,
+    models: Option<Models>,
     stats: LearnerStats,
     gravity_frozen: bool,
 }
@@ -66,12 +59,11 @@ impl Learner {
             n: self.n,
             m: self.m,
             dt: self.dt,
-            torque_scale: self.torque_scale.clone(),
-            gravity: self.gravity.clone(),
-            gravity_static: self.gravity_static.clone(),
-            forward: self.forward.clone(),
-            locals: self.locals.clone(),
-            warm: self.warm.clone(),
+            warm_up: match &self.state {
+                State::WarmUp(w) => w.clone(),
+                State::Ready(_) => Vec::new(),
+            },
+            models: self.state.models().cloned(),
             stats: self.stats,
             gravity_frozen: self.gravity_frozen,
         };
@@ -115,23 +107,15 @@ impl Learner {
         let cfg: LearnerConfig =
             serde_json::from_str(&s.config_json).map_err(|e| bad(format!("config: {e}")))?;
         let mut learner = Learner::new(s.n, s.m, s.dt, cfg)?;
-        learner.torque_scale = s.torque_scale;
-        learner.gravity = s.gravity;
-        learner.gravity_static = s.gravity_static;
-        learner.forward = s.forward;
-        learner.locals = s.locals;
-        learner.warm = s.warm;
+        learner.state = match s.models {
+            Some(mut models) => {
+                models.restore_buffers();
+                State::Ready(Box::new(models))
+            }
+            None => State::WarmUp(s.warm_up),
+        };
         learner.stats = s.stats;
         learner.gravity_frozen = s.gravity_frozen;
-        for g in [learner.gravity.as_mut(), learner.gravity_static.as_mut()]
-            .into_iter()
-            .flatten()
-        {
-            g.restore_buffers();
-        }
-        if let Some(f) = learner.forward.as_mut() {
-            f.restore_buffers();
-        }
         Ok(learner)
     }
 

@@ -45,10 +45,13 @@ mod local;
 pub mod train;
 mod variant;
 
-pub use config::{CostKind, ExplorationKind, LearnerConfig, NominalConfig};
+pub use config::{
+    ControllerConfig, CostKind, DynamicsConfig, ExplorationConfig, GravityConfig, GuardConfig,
+    LearnerConfig, NominalConfig, PartitionConfig,
+};
 pub use error::{LearnError, Result};
 pub use forward::ForwardModel;
 pub use gravity::{GravityModel, StaticGate};
-pub use learner::{CommandSource, Learner, LearnerStats};
+pub use learner::{CommandSource, Learner, LearnerStats, EXTRAPOLATION_CUTOFF};
 pub use local::LocalSummary;
 pub use variant::Variant;

@@ -1,5 +1,6 @@
-//! The local controllers: one reward-weighted regression per receptive field of the forward
-//! model, `u^i = [ẍ_refᵀ, q̇ᵀ, 1] β^i` (eq. 31), following the partition as it changes.
+//! The local controllers: one reward-weighted regression per receptive field of the partition,
+//! `u^i = u0 + φᵀ β^i` (eq. 31), each with its local dynamics regression, following the partition
+//! as fields are added and pruned; their M-steps (eqs. 23–24, 28).
 
 use crate::error::Result;
 use lwpr::RfId;
@@ -10,9 +11,10 @@ use std::collections::BTreeMap;
 /// One local controller and its bookkeeping.
 #[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct Local {
+    /// The controller `β^i` (features × joints) with its `τ_i`, `σ_i` and sufficient statistics.
     pub rwr: OnlineRwr,
-    /// Local linear dynamics `ẍ ≈ [uᵀ, q̇ᵀ, (q − c)ᵀ, 1] Θ` by activation-weighted least squares
-    /// (a plain weighted regression: fixed `τ`, zero cost); its `u` rows give `Â = ∂ẍ/∂u`.
+    /// Local linear dynamics `ẍ ≈ φ_dᵀ Θ` by activation-weighted least squares (a plain weighted
+    /// regression: fixed `τ`, zero cost); its `u` rows give `Â = ∂ẍ/∂u`.
     pub dynamics: OnlineRwr,
     /// M-steps of the dynamics regression done.
     pub dynamics_updates: u64,
@@ -28,17 +30,70 @@ pub struct Local {
     pub last_active: u64,
 }
 
-/// The shape of the local dynamics regressions: number of features and forgetting factor.
-#[derive(Clone, Copy, Debug)]
-pub struct DynamicsSpec {
-    pub features: usize,
-    pub forgetting: f64,
+/// What a new local controller is made of: its feature counts and regression settings.
+#[derive(Clone, Debug)]
+pub(crate) struct LocalSpec<'a> {
+    /// Features `p` of the controller, joints `n`, task dimensions `m`.
+    pub p: usize,
+    pub n: usize,
+    pub m: usize,
+    /// Features of the local dynamics regression.
+    pub dynamics_features: usize,
+    /// Forgetting of the local dynamics regression.
+    pub dynamics_forgetting: f64,
+    pub rwr: &'a RwrConfig,
+    /// Effective sample size at which a controller counts as trained.
+    pub trained_ess: f64,
 }
 
-/// Features of the local dynamics regression for `n` joints: `[u, q̇, q − c, 1]` and, if
-/// `bilinear`, `u_j (q_k − c_k)`.
-pub fn dynamics_features(n: usize, bilinear: bool) -> usize {
-    3 * n + 1 + if bilinear { n * n } else { 0 }
+/// The outcome of one M-step of a local controller.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum MStep {
+    Done,
+    Failed,
+}
+
+impl Local {
+    /// Records one hindsight sample (`phi → target`, cost `r`, activation `w`) and runs the
+    /// M-step when `update_every` samples are pending; the local dynamics are re-solved at every
+    /// `solve_every`-th M-step. `None` when no M-step was due.
+    pub(crate) fn observe(
+        &mut self,
+        phi: &[f64],
+        target: &[f64],
+        r: f64,
+        w: f64,
+        update_every: usize,
+        solve_every: u64,
+    ) -> Result<Option<MStep>> {
+        self.rwr.observe(phi, target, r, w)?;
+        self.pending += 1;
+        if self.pending < update_every {
+            return Ok(None);
+        }
+        self.pending = 0;
+        if self.updates.is_multiple_of(solve_every) && self.dynamics.update().is_ok() {
+            self.dynamics_updates += 1;
+        }
+        Ok(Some(match self.rwr.update() {
+            Ok(info) => {
+                self.ess = info.ess;
+                self.updates += 1;
+                MStep::Done
+            }
+            Err(_) => MStep::Failed,
+        }))
+    }
+
+    /// Whether the controller acts (its last M-step's effective sample size reached `ess`).
+    pub fn trained(&self, ess: f64) -> bool {
+        self.ess >= ess
+    }
+
+    /// Whether the controller is below `ess` (not in the blend).
+    pub fn untrained(&self, ess: f64) -> bool {
+        self.ess < ess
+    }
 }
 
 /// All local controllers, keyed by the stable id of their receptive field.
@@ -48,24 +103,19 @@ pub struct LocalControllers {
 }
 
 impl LocalControllers {
-    /// A controller for a new receptive field: `θ` copied from `source` if given and trained,
-    /// else from the trained controller with the nearest centre, else the constant command
-    /// `u_init` (zero when empty; `d` actions, `p` features, `m` task dimensions).
-    #[allow(clippy::too_many_arguments)]
-    pub fn add(
+    /// A controller for a new receptive field at `center`, created at sample `now`: `β` copied
+    /// from `source` if given and trained, else from the trained controller with the nearest
+    /// centre, else the constant command `u_init` (zero when empty).
+    pub(crate) fn add(
         &mut self,
         id: RfId,
         center: Vec<f64>,
         source: Option<RfId>,
         u_init: &[f64],
-        d: usize,
-        m: usize,
-        p: usize,
-        cfg: &RwrConfig,
-        min_ess: f64,
-        dynamics: DynamicsSpec,
+        spec: &LocalSpec,
+        now: u64,
     ) -> Result<()> {
-        let trained = |l: &&Local| l.ess >= min_ess;
+        let trained = |l: &&Local| l.trained(spec.trained_ess);
         let from = source
             .and_then(|s| self.map.get(&s))
             .filter(trained)
@@ -78,30 +128,19 @@ impl LocalControllers {
         let (theta, sigma) = match from {
             Some(l) => (l.rwr.theta().clone(), l.rwr.sigma()),
             None => {
-                let mut theta = DMatrix::zeros(p, d);
+                let mut theta = DMatrix::zeros(spec.p, spec.n);
                 for (j, u) in u_init.iter().enumerate() {
-                    theta[(p - 1, j)] = *u;
+                    theta[(spec.p - 1, j)] = *u;
                 }
-                (theta, cfg.sigma_init)
+                (theta, spec.rwr.sigma_init)
             }
         };
         let cfg = RwrConfig {
-            sigma_init: sigma.max(cfg.sigma_min).max(f64::MIN_POSITIVE),
-            ..cfg.clone()
+            sigma_init: sigma.max(spec.rwr.sigma_min).max(f64::MIN_POSITIVE),
+            ..spec.rwr.clone()
         };
         let rwr = OnlineRwr::with_theta(theta, cfg.clone())?;
-        let dyn_cfg = RwrConfig {
-            adapt_tau: false,
-            update_sigma: false,
-            tau_init: 1.0,
-            ridge: 1e-6,
-            min_ess: 0.0,
-            tau_max: None,
-            ridge_to_previous: false,
-            forgetting: dynamics.forgetting,
-            ..cfg
-        };
-        let dynamics = OnlineRwr::new(dynamics.features, m, dyn_cfg)?;
+        let dynamics = OnlineRwr::new(spec.dynamics_features, spec.m, dynamics_config(cfg, spec))?;
         self.map.insert(
             id,
             Local {
@@ -112,7 +151,7 @@ impl LocalControllers {
                 pending: 0,
                 updates: 0,
                 ess: 0.0,
-                last_active: 0,
+                last_active: now,
             },
         );
         Ok(())
@@ -122,13 +161,13 @@ impl LocalControllers {
         self.map.remove(&id);
     }
 
-    /// Appends to `out` the ids of the untrained controllers (`ess < min_ess`) whose field was
-    /// last active before sample `before`.
-    pub fn stale_untrained(&self, min_ess: f64, before: u64, out: &mut Vec<RfId>) {
+    /// Appends to `out` the ids of the untrained controllers whose field was last active before
+    /// sample `before`.
+    pub(crate) fn stale_untrained(&self, trained_ess: f64, before: u64, out: &mut Vec<RfId>) {
         out.extend(
             self.map
                 .iter()
-                .filter(|(_, l)| l.ess < min_ess && l.last_active < before)
+                .filter(|(_, l)| l.untrained(trained_ess) && l.last_active < before)
                 .map(|(id, _)| *id),
         );
     }
@@ -137,9 +176,39 @@ impl LocalControllers {
         self.map.len()
     }
 
-    /// How many controllers are trained (effective sample size ≥ `min_ess`).
-    pub fn n_trained(&self, min_ess: f64) -> usize {
-        self.map.values().filter(|l| l.ess >= min_ess).count()
+    /// How many controllers are trained (effective sample size ≥ `trained_ess`).
+    pub fn n_trained(&self, trained_ess: f64) -> usize {
+        self.map.values().filter(|l| l.trained(trained_ess)).count()
+    }
+
+    /// Summaries of every local controller, by id.
+    pub fn summaries(&self) -> Vec<LocalSummary> {
+        self.map
+            .iter()
+            .map(|(id, l)| LocalSummary {
+                id: id.0,
+                ess: l.ess,
+                sigma: l.rwr.sigma(),
+                tau: l.rwr.tau(),
+                updates: l.updates,
+            })
+            .collect()
+    }
+}
+
+/// The local dynamics regression's settings: a plain weighted least squares (fixed `τ`, no `σ`
+/// update, no floors) with its own forgetting.
+fn dynamics_config(cfg: RwrConfig, spec: &LocalSpec) -> RwrConfig {
+    RwrConfig {
+        adapt_tau: false,
+        update_sigma: false,
+        tau_init: 1.0,
+        ridge: 1e-6,
+        min_ess: 0.0,
+        tau_max: None,
+        ridge_to_previous: false,
+        forgetting: spec.dynamics_forgetting,
+        ..cfg
     }
 }
 
@@ -155,20 +224,4 @@ pub struct LocalSummary {
     pub sigma: f64,
     pub tau: f64,
     pub updates: u64,
-}
-
-impl LocalControllers {
-    /// Summaries of every local controller, by id.
-    pub fn summaries(&self) -> Vec<LocalSummary> {
-        self.map
-            .iter()
-            .map(|(id, l)| LocalSummary {
-                id: id.0,
-                ess: l.ess,
-                sigma: l.rwr.sigma(),
-                tau: l.rwr.tau(),
-                updates: l.updates,
-            })
-            .collect()
-    }
 }

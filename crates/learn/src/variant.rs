@@ -55,18 +55,18 @@ impl Variant {
         match self {
             Variant::Rwr => {}
             Variant::Unweighted => {
-                c.reward_weighting = false;
-                c.null_space_shrink = 0.0;
+                c.controllers.reward_weighting = false;
+                c.controllers.null_space_shrink = 0.0;
             }
             Variant::Paper => {
-                c.cost = CostKind::Full;
-                c.null_space_shrink = 0.0;
+                c.controllers.cost = CostKind::Full;
+                c.controllers.null_space_shrink = 0.0;
             }
             Variant::Global => {
-                c.reward_weighting = false;
-                c.null_space_shrink = 0.0;
-                c.forward.init_d = MetricInit::Scalar(1e-8);
-                c.forward.update_d = false;
+                c.controllers.reward_weighting = false;
+                c.controllers.null_space_shrink = 0.0;
+                c.partition.lwpr.init_d = MetricInit::Scalar(1e-8);
+                c.partition.lwpr.update_d = false;
             }
         }
         c

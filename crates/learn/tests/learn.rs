@@ -82,7 +82,7 @@ fn training_reduces_the_tracking_error_and_beats_the_nominal_controller() {
     // The nominal behaviour alone (PD to rest plus learned gravity) does not track the figure-8:
     // compare with a learner whose local controllers never act (min_ess unreachable).
     let mut cfg = common::config(&s);
-    cfg.min_ess = 1e12;
+    cfg.controllers.trained_ess = 1e12;
     let mut nominal_only = osrl_learn::Learner::new(3, 2, 0.002, cfg).unwrap();
     let nominal = common::run(&s, &mut nominal_only, 4.5, 4.0, 0.0, 0);
     let nom = &nominal.learning_curve.last().unwrap().1;
@@ -150,17 +150,15 @@ fn commands_respect_the_torque_limits_and_bad_limits_are_refused() {
     let s = common::planar3();
     let mut cfg = common::config(&s);
     // Limits from the data sheet reach the config; a wrong count or a non-positive limit is refused.
-    assert_eq!(cfg.torque_limits, vec![60.0, 40.0, 20.0]);
+    assert_eq!(cfg.guards.torque_limits, vec![60.0, 40.0, 20.0]);
     for bad in [
         vec![1.0, 1.0],
         vec![1.0, 0.0, 1.0],
         vec![1.0, f64::NAN, 1.0],
         vec![1.0, f64::INFINITY, 1.0],
     ] {
-        let c = osrl_learn::LearnerConfig {
-            torque_limits: bad.clone(),
-            ..cfg.clone()
-        };
+        let mut c = cfg.clone();
+        c.guards.torque_limits = bad.clone();
         let err = osrl_learn::Learner::new(3, 2, 0.002, c).err();
         assert!(
             matches!(&err, Some(LearnError::InvalidConfig(m)) if m.contains("torque_limits")),
@@ -170,10 +168,8 @@ fn commands_respect_the_torque_limits_and_bad_limits_are_refused() {
     // A velocity scale outside LWPR's normalisation range is refused when the learner is made,
     // not after the warm-up when its models are.
     for bad in [0.0, 1e-101, 1e101, f64::NAN] {
-        let c = osrl_learn::LearnerConfig {
-            velocity_scale: bad,
-            ..cfg.clone()
-        };
+        let mut c = cfg.clone();
+        c.partition.velocity_scale = bad;
         let err = osrl_learn::Learner::new(3, 2, 0.002, c).err();
         assert!(
             matches!(&err, Some(LearnError::InvalidConfig(m)) if m.contains("velocity_scale")),
@@ -183,27 +179,29 @@ fn commands_respect_the_torque_limits_and_bad_limits_are_refused() {
     // Limits far below gravity: every command (fallback u0, then the learned blend with
     // exploration) stays inside them, and the clipped commands are counted.
     // A learner without limits gets them set (a bad set changes nothing).
-    cfg.torque_limits = vec![0.5, 0.4, 0.3];
-    let mut learner = osrl_learn::Learner::new(
-        3,
-        2,
-        0.002,
-        osrl_learn::LearnerConfig {
-            torque_limits: Vec::new(),
-            ..cfg.clone()
-        },
-    )
+    cfg.guards.torque_limits = vec![0.5, 0.4, 0.3];
+    let mut learner = osrl_learn::Learner::new(3, 2, 0.002, {
+        let mut c = cfg.clone();
+        c.guards.torque_limits = Vec::new();
+        c
+    })
     .unwrap();
     assert!(learner.set_torque_limits(&[1.0, 2.0]).is_err());
-    assert!(learner.config().torque_limits.is_empty());
-    learner.set_torque_limits(&cfg.torque_limits).unwrap();
+    assert!(learner.config().guards.torque_limits.is_empty());
+    learner
+        .set_torque_limits(&cfg.guards.torque_limits)
+        .unwrap();
     let mut rng = <rand_chacha::ChaCha8Rng as rand::SeedableRng>::seed_from_u64(3);
     let mut u = vec![0.0; 3];
     let q = s.q_start.clone();
     learner
         .command(&q, &[0.0; 3], &[5.0, -5.0], Some(&mut rng), &mut u)
         .unwrap();
-    let within = |u: &[f64]| u.iter().zip(&cfg.torque_limits).all(|(v, l)| v.abs() <= *l);
+    let within = |u: &[f64]| {
+        u.iter()
+            .zip(&cfg.guards.torque_limits)
+            .all(|(v, l)| v.abs() <= *l)
+    };
     assert!(within(&u), "{u:?}");
     common::run(&s, &mut learner, 0.5, 0.4, 0.0, 1);
     let before = learner.stats().clipped;
@@ -222,7 +220,7 @@ fn idle_untrained_fields_are_pruned_with_their_controllers() {
     let s = common::planar3();
     let run = |after: Option<f64>| {
         let mut cfg = common::config(&s);
-        cfg.prune_untrained_after = after;
+        cfg.partition.prune_untrained_after = after;
         let mut l = osrl_learn::Learner::new(3, 2, 0.002, cfg).unwrap();
         common::run(&s, &mut l, 0.6, 0.4, 0.0, 2);
         l
@@ -245,7 +243,7 @@ fn idle_untrained_fields_are_pruned_with_their_controllers() {
     assert_eq!(fwd, locals);
     // A bad setting is refused with the field named.
     let mut cfg = common::config(&s);
-    cfg.prune_untrained_after = Some(0.0);
+    cfg.partition.prune_untrained_after = Some(0.0);
     let e = osrl_learn::Learner::new(3, 2, 0.002, cfg)
         .err()
         .unwrap()

@@ -1,0 +1,272 @@
+//! The groups of [`LearnerConfig`](super::LearnerConfig), one per part of the learned controller
+//! (paper section IV; `docs/learner.md`). Each field's doc gives its unit, its default and why;
+//! the measurements behind the defaults are in `docs/decisions.md`.
+
+use crate::gravity::StaticGate;
+use lwpr::{LwprConfig, MetricInit};
+use rwr::RwrConfig;
+use serde::{Deserialize, Serialize};
+
+/// The cost whose transformed value weights the hindsight samples of the local controllers.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CostKind {
+    /// The paper's `r = ‖u − u0‖²` (`N = I`).
+    Full,
+    /// Only its avoidable part `r_null = ‖(I − Â⁺Â)(u − u0)‖²`, with `Â = ∂ẍ/∂u` from the local
+    /// dynamics: the same optimum, with a `τ` set by the part the controller can change.
+    #[default]
+    NullSpace,
+}
+
+/// The nominal behaviour `u0 = ĝ(q) − K_Dq q̇ − K_Pq (q − q_rest)` (eq. 6 plus learned gravity).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct NominalConfig {
+    /// Joint stiffness `K_Pq` (N·m/rad), one per joint. Default: the robot's data sheet, whose
+    /// gains keep the arm near its rest posture.
+    pub kp: Vec<f64>,
+    /// Joint damping `K_Dq` (N·m·s/rad), one per joint. Default: the robot's data sheet.
+    pub kd: Vec<f64>,
+    /// Rest posture `q_rest` (rad). Default: the robot's data sheet.
+    pub q_rest: Vec<f64>,
+}
+
+/// The learned gravity compensation `ĝ(q)` of `u0`: LWPR on `[q, q̇, q̈] → u`, kernel on `q`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct GravityConfig {
+    /// The LWPR model (its input, kernel and regression dimensions are set by the learner).
+    /// Default: fixed kernels of width 0.25 rad (`init_d` 16, `update_d` false), `w_gen` 0.2,
+    /// `init_alpha` 10: metric learning collapsed the model to a few fields for the whole arm.
+    pub lwpr: LwprConfig,
+    /// A second model learnt from still samples only (see [`StaticGate`]), regressing on `q`;
+    /// once on-policy learning starts, `u0` uses it wherever it has support. `None`: the dynamic
+    /// model only. Default `Some(StaticGate::default())`: along a path the dynamic model cannot
+    /// separate gravity from inertia.
+    pub static_gate: Option<StaticGate>,
+}
+
+/// The partition: the forward model `ẍ = f(q, q̇, u)` (eqs. 32–33) whose receptive fields carry
+/// the local controllers.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct PartitionConfig {
+    /// The LWPR forward model (kernel on `(q, q̇)`, fields shared by the task dimensions; set by
+    /// the learner). Default: fixed kernels of width 0.125 rad and 1.25 rad/s (`init_d` 64,
+    /// `update_d` false), `w_gen` 0.2, `init_alpha` 10: it places fields, `Â` comes from the
+    /// local dynamics, and metric learning only made the step slower.
+    pub lwpr: LwprConfig,
+    /// A receptive field learns from (and joins the blend at) activations above this (0–1).
+    /// Default 0.05: LWPR's own pruning scale; below it a field's samples are noise.
+    pub activation_cutoff: f64,
+    /// The forward model learns from every this many transitions (≥ 1). Default 8: it only
+    /// places fields, and its update was the largest cost of a learning step.
+    pub learn_every: usize,
+    /// Receptive fields whose controller is untrained and that were not active for this long
+    /// (s of learning) are removed with their controller; `None`: never (in TOML, where a
+    /// missing key is the default, a huge value such as 1e300 switches it off). Default 60:
+    /// failing early episodes leave thousands of idle fields that every step scans.
+    pub prune_untrained_after: Option<f64>,
+    /// Scale of joint velocities in the models' inputs (rad/s): kernel widths in `q̇` are this
+    /// many times those in `q`; within [`lwpr::NORM_RANGE`]. Default 10: joint speeds along the
+    /// tasks are about ten times the joint excursions of a field.
+    pub velocity_scale: f64,
+}
+
+/// The local controllers `u^i = u0 + [ẍ_refᵀ, q̇ᵀ, (q − c_i)ᵀ, 1] β^i` (eq. 31) and their
+/// reward-weighted regression on hindsight samples.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ControllerConfig {
+    /// Reward-weighted regression of each local controller (own `τ_i`, `σ_i`). Default `τ0`
+    /// 0.1, `σ0` 0.5 N·m, `σ_min` 0.05, forgetting 1 (hindsight targets are stationary), ridge
+    /// 1e-4, `min_ess` 10 (the M-step's own floor on the weights' effective sample size).
+    pub rwr: RwrConfig,
+    /// A local controller joins the blend once the effective sample size of its last M-step
+    /// reaches this (samples). Default 50: a controller fitted on fewer samples extrapolates.
+    pub trained_ess: f64,
+    /// M-step of a local controller after this many new samples (≥ 1). Default 25: often enough
+    /// to follow the policy, rarely enough to be cheap.
+    pub update_every: usize,
+    /// Weight the hindsight samples by the transformed reward (true: RWR) or not (false:
+    /// activation-weighted regression, the supervised-inverse ablation). Default true.
+    pub reward_weighting: bool,
+    /// Cost of the reward weighting. Default `null_space` (see [`CostKind`]).
+    pub cost: CostKind,
+    /// Hindsight shrinkage `κ ∈ [0, 1]`: a sample's target `u − u0` loses the share `κ` of its
+    /// part in the null space of `Â` — the same `ẍ` at a lower cost. 0 is the paper's plain
+    /// relabelling. Default 1.
+    pub null_space_shrink: f64,
+}
+
+/// The local dynamics `ẍ ≈ [uᵀ, q̇ᵀ, (q − c)ᵀ, 1, u_j (q_k − c_k)] Θ` of each receptive field, by
+/// weighted least squares; its `u` rows give `Â = ∂ẍ/∂u`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct DynamicsConfig {
+    /// Forgetting factor per sample, in (0, 1]. Default 0.99995: the on-path `Â` follows the
+    /// policy's states.
+    pub forgetting: f64,
+    /// Learn from every this many transitions (≥ 1). Default 1.
+    pub learn_every: usize,
+    /// Re-solve at every this many M-steps of the field's controller (≥ 1). Default 4: a solve
+    /// factors a 71×71 system on sarcos7.
+    pub solve_every: usize,
+}
+
+/// Exploration noise of the on-policy commands.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ExplorationConfig {
+    /// Scale of the noise relative to the blended `σ` of the local controllers (≥ 0). Default 1:
+    /// RWR's own `σ` (eq. 24).
+    pub scale: f64,
+    /// Cap per joint, as a share of the standard deviation of that joint's torques during the
+    /// warm-up (≥ 0). Default 0.15: light distal joints are not shaken by the noise that suits
+    /// heavy proximal ones.
+    pub cap: f64,
+}
+
+/// Guards on what the learner accepts and sends.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct GuardConfig {
+    /// Torque limits (N·m), one per joint: every command, exploration included, is clipped to
+    /// `±limit` (counted). Empty: none. Default empty; [`LearnerConfig::for_robot`] fills it from
+    /// the data sheet.
+    ///
+    /// [`LearnerConfig::for_robot`]: super::LearnerConfig::for_robot
+    pub torque_limits: Vec<f64>,
+    /// Measurements with `|ẍ|` above this (m/s²) are rejected as absurd (counted). Default 1000:
+    /// far above any arm's task acceleration, so only sensor faults trip it.
+    pub max_abs_acceleration: f64,
+    /// Measurements with `|q̇|` above this (rad/s) are rejected as absurd (counted). Default 100.
+    pub max_abs_velocity: f64,
+    /// Transitions collected before the models are created; their standard deviations set the
+    /// models' torque and acceleration scales (≥ 10). Default 1000 (2 s at 500 Hz).
+    pub warmup_samples: usize,
+}
+
+/// Switches of the model structure that only experiments flip; the defaults are the learner.
+/// Not part of the documented configuration.
+#[doc(hidden)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Experimental {
+    /// Local controllers learn `u − u0` (true) or `u` (false, eq. 31 as printed).
+    pub residual: bool,
+    /// The features of eq. 31 also have `q − c_i`.
+    pub position_features: bool,
+    /// The forward model's local regression also uses `q` (eq. 32 uses `[q̇, u, 1]`).
+    pub forward_uses_q: bool,
+    /// Exploration adds noise projected onto the null space of `Â` (true) or isotropic only.
+    pub null_space_exploration: bool,
+    /// Cap on the null-space noise of joint `j`, as a share of its warm-up torque deviation.
+    pub null_space_cap: Option<f64>,
+    /// `ĝ` keeps learning on-policy.
+    pub gravity_on_policy: bool,
+    /// The gravity model's regressors include `q̇ᵢq̇ⱼ`.
+    pub gravity_velocity_products: bool,
+    /// The local dynamics have the bilinear features `u_j (q_k − c_k)`.
+    pub dynamics_bilinear: bool,
+}
+
+impl Default for GravityConfig {
+    fn default() -> Self {
+        Self {
+            lwpr: LwprConfig {
+                init_d: MetricInit::Scalar(16.0),
+                update_d: false,
+                w_gen: 0.2,
+                init_alpha: 10.0,
+                ..LwprConfig::default()
+            },
+            static_gate: Some(StaticGate::default()),
+        }
+    }
+}
+
+impl Default for PartitionConfig {
+    fn default() -> Self {
+        Self {
+            lwpr: LwprConfig {
+                init_d: MetricInit::Scalar(64.0),
+                update_d: false,
+                w_gen: 0.2,
+                init_alpha: 10.0,
+                ..LwprConfig::default()
+            },
+            activation_cutoff: 0.05,
+            learn_every: 8,
+            prune_untrained_after: Some(60.0),
+            velocity_scale: 10.0,
+        }
+    }
+}
+
+impl Default for ControllerConfig {
+    fn default() -> Self {
+        Self {
+            rwr: RwrConfig {
+                tau_init: 0.1,
+                sigma_init: 0.5,
+                sigma_min: 0.05,
+                forgetting: 1.0,
+                ridge: 1e-4,
+                min_ess: 10.0,
+                ..RwrConfig::default()
+            },
+            trained_ess: 50.0,
+            update_every: 25,
+            reward_weighting: true,
+            cost: CostKind::NullSpace,
+            null_space_shrink: 1.0,
+        }
+    }
+}
+
+impl Default for DynamicsConfig {
+    fn default() -> Self {
+        Self {
+            forgetting: 0.99995,
+            learn_every: 1,
+            solve_every: 4,
+        }
+    }
+}
+
+impl Default for ExplorationConfig {
+    fn default() -> Self {
+        Self {
+            scale: 1.0,
+            cap: 0.15,
+        }
+    }
+}
+
+impl Default for GuardConfig {
+    fn default() -> Self {
+        Self {
+            torque_limits: Vec::new(),
+            max_abs_acceleration: 1000.0,
+            max_abs_velocity: 100.0,
+            warmup_samples: 1000,
+        }
+    }
+}
+
+impl Default for Experimental {
+    fn default() -> Self {
+        Self {
+            residual: true,
+            position_features: true,
+            forward_uses_q: true,
+            null_space_exploration: true,
+            null_space_cap: None,
+            gravity_on_policy: false,
+            gravity_velocity_products: true,
+            dynamics_bilinear: true,
+        }
+    }
+}

@@ -1,0 +1,141 @@
+//! [`LearnerConfig::validate`]: every field against its documented range, the error naming it.
+
+use super::LearnerConfig;
+use crate::error::{LearnError, Result};
+
+/// `Err(InvalidConfig(msg))` unless `ok`.
+fn ensure(ok: bool, msg: impl FnOnce() -> String) -> Result<()> {
+    if ok {
+        Ok(())
+    } else {
+        Err(LearnError::InvalidConfig(msg()))
+    }
+}
+
+fn finite_at_least(x: f64, lo: f64) -> bool {
+    x.is_finite() && x >= lo
+}
+
+impl LearnerConfig {
+    /// Checks every field's range and that the nominal behaviour and the torque limits have `n`
+    /// joints.
+    ///
+    /// # Errors
+    /// [`LearnError::InvalidConfig`] naming the first field out of range, with its value.
+    pub fn validate(&self, n: usize) -> Result<()> {
+        self.validate_nominal(n)?;
+        self.validate_models()?;
+        self.validate_controllers()?;
+        self.validate_guards(n)
+    }
+
+    fn validate_nominal(&self, n: usize) -> Result<()> {
+        let nom = &self.nominal;
+        for (what, v) in [
+            ("nominal.kp", &nom.kp),
+            ("nominal.kd", &nom.kd),
+            ("nominal.q_rest", &nom.q_rest),
+        ] {
+            ensure(v.len() == n && v.iter().all(|x| x.is_finite()), || {
+                format!("{what} needs {n} finite values, got {v:?}")
+            })?;
+        }
+        Ok(())
+    }
+
+    fn validate_models(&self) -> Result<()> {
+        let p = &self.partition;
+        let c = p.activation_cutoff;
+        ensure(c > 0.0 && c < 1.0, || {
+            format!("partition.activation_cutoff {c} must be in (0, 1)")
+        })?;
+        ensure(p.learn_every >= 1, || {
+            "partition.learn_every must be ≥ 1".into()
+        })?;
+        if let Some(t) = p.prune_untrained_after {
+            ensure(t > 0.0 && t.is_finite(), || {
+                format!("partition.prune_untrained_after {t} must be finite and > 0 (s)")
+            })?;
+        }
+        // It normalises the models' velocity inputs: LWPR's range for a normalisation.
+        let (lo, hi) = lwpr::NORM_RANGE;
+        let vs = p.velocity_scale;
+        ensure((lo..=hi).contains(&vs), || {
+            format!("partition.velocity_scale {vs:e} must be within [{lo:e}, {hi:e}] (rad/s)")
+        })?;
+        if let Some(g) = &self.gravity.static_gate {
+            ensure(g.max_velocity > 0.0 && g.max_acceleration > 0.0, || {
+                format!(
+                    "gravity.static_gate limits must be > 0, got {} rad/s and {} rad/s²",
+                    g.max_velocity, g.max_acceleration
+                )
+            })?;
+        }
+        let d = &self.dynamics;
+        ensure(d.forgetting > 0.0 && d.forgetting <= 1.0, || {
+            format!("dynamics.forgetting {} must be in (0, 1]", d.forgetting)
+        })?;
+        ensure(d.learn_every >= 1 && d.solve_every >= 1, || {
+            "dynamics.learn_every and dynamics.solve_every must be ≥ 1".into()
+        })
+    }
+
+    fn validate_controllers(&self) -> Result<()> {
+        let c = &self.controllers;
+        ensure(finite_at_least(c.trained_ess, 1.0), || {
+            format!("controllers.trained_ess {} must be ≥ 1", c.trained_ess)
+        })?;
+        ensure(c.update_every >= 1, || {
+            "controllers.update_every must be ≥ 1".into()
+        })?;
+        ensure((0.0..=1.0).contains(&c.null_space_shrink), || {
+            format!(
+                "controllers.null_space_shrink {} must be in [0, 1]",
+                c.null_space_shrink
+            )
+        })?;
+        let e = &self.exploration;
+        ensure(finite_at_least(e.scale, 0.0), || {
+            format!("exploration.scale {} must be finite and ≥ 0", e.scale)
+        })?;
+        ensure(finite_at_least(e.cap, 0.0), || {
+            format!("exploration.cap {} must be finite and ≥ 0", e.cap)
+        })?;
+        if let Some(cap) = self.experimental.null_space_cap {
+            ensure(finite_at_least(cap, 0.0), || {
+                format!("experimental.null_space_cap {cap} must be finite and ≥ 0")
+            })?;
+        }
+        c.rwr.validate()?;
+        Ok(())
+    }
+
+    fn validate_guards(&self, n: usize) -> Result<()> {
+        let g = &self.guards;
+        let tl = &g.torque_limits;
+        ensure(
+            (tl.is_empty() || tl.len() == n) && tl.iter().all(|t| *t > 0.0 && t.is_finite()),
+            || {
+                format!(
+                    "guards.torque_limits needs {n} finite values > 0 (N·m) or none (a huge \
+                     value for a joint without a limit), got {tl:?}"
+                )
+            },
+        )?;
+        ensure(g.warmup_samples >= 10, || {
+            "guards.warmup_samples must be ≥ 10".into()
+        })?;
+        ensure(g.max_abs_acceleration > 0.0, || {
+            format!(
+                "guards.max_abs_acceleration {} must be > 0 (m/s²)",
+                g.max_abs_acceleration
+            )
+        })?;
+        ensure(g.max_abs_velocity > 0.0, || {
+            format!(
+                "guards.max_abs_velocity {} must be > 0 (rad/s)",
+                g.max_abs_velocity
+            )
+        })
+    }
+}

@@ -1,0 +1,374 @@
+//! The evaluation harness: runs the learned controller without exploration on a simulated robot
+//! and compares it with the analytical optimum `u*` (eq. 7, `N = I`, the true model, the same
+//! `u0` form with the true gravity) at the same states and reference accelerations.
+//!
+//! This is the one place that reads a robot model — the simulator's, to compute `u*` — and it
+//! sits outside the learner: the learner only receives the commands' measurements.
+
+mod true_gain;
+mod window;
+
+use crate::error::{LearnError, Result};
+use crate::learner::{CommandSource, Learner};
+use osrl_control::{
+    drive, reference_acceleration, ControlError, Ended, Osc, OscConfig, StepObserver, StepView,
+    Target, TaskController, TaskGains, Trajectory,
+};
+use osrl_dynamics::{Measurement, Robot, SimConfig, SimRobot};
+use serde::{Deserialize, Serialize};
+use std::ops::ControlFlow;
+use true_gain::TrueGain;
+use window::Acc;
+
+/// Metrics of one evaluation run (definitions of issue 6).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct EvalResult {
+    /// RMS of `‖x − x_d‖` over whole periods after the first (mm).
+    pub tracking_rms_mm: f64,
+    pub tracking_max_mm: f64,
+    /// Mean `‖u − u*‖²` over the summed per-joint variance of `u*`.
+    pub command_nmse: f64,
+    /// Mean `‖u − u0‖²` of the learned commands over that of `u*`.
+    pub command_cost_ratio: f64,
+    /// The part of `command_nmse` in the null space of the true `A = J M⁻¹` (`‖(I − A⁺A)(u −
+    /// u*)‖²`, same normalisation): the redundancy resolution's share of the error.
+    #[serde(default)]
+    pub command_nmse_null: f64,
+    /// The learned nominal behaviour's error, `‖û0 − u0‖²` (learned `ĝ` vs true `g`), with the
+    /// same normalisation: a floor of `command_nmse` set by the gravity model.
+    #[serde(default)]
+    pub nominal_nmse: f64,
+    /// Its part in the null space of the true `A` (the part the task cannot correct).
+    #[serde(default)]
+    pub nominal_nmse_null: f64,
+    /// Mean relative error `‖Â − A‖_F / ‖A‖_F` of the learner's blended input gain `Â = ∂ẍ/∂u`
+    /// against the true `A = J M⁻¹` (steps where the learner has one).
+    #[serde(default)]
+    pub gain_error: f64,
+    /// The scales behind the ratios: summed per-joint variance of `u*` (N²·m²) and mean
+    /// `‖u* − u0‖²` (N²·m²).
+    #[serde(default)]
+    pub u_star_variance: f64,
+    #[serde(default)]
+    pub u_star_cost: f64,
+    /// Share of steps where no trained local controller was active (fallback to `u0`).
+    pub fallback_share: f64,
+    /// Largest change of the command between consecutive steps (N·m), learned and analytical.
+    pub max_command_step: f64,
+    pub max_command_step_analytical: f64,
+    /// Whether the run was cut short by a tracking error above 0.2 m, or never reached the
+    /// evaluated window; the metrics then cover the steps before (all steps if the window was
+    /// never reached).
+    pub diverged: bool,
+}
+
+/// The time series of one evaluation (for plots).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct EvalSeries {
+    pub t: Vec<f64>,
+    /// Task position, desired and actual (row-major, `m` per step).
+    pub x_d: Vec<f64>,
+    pub x: Vec<f64>,
+    /// Learned and optimal commands (row-major, `n` per step).
+    pub u: Vec<f64>,
+    pub u_star: Vec<f64>,
+    pub q: Vec<f64>,
+    /// Wall time of each learned command (s): what a controller command costs on this model.
+    pub command_seconds: Vec<f64>,
+}
+
+impl EvalSeries {
+    /// The `p`-quantile (0–1, nearest rank) of the command wall times in µs; `None` if none.
+    pub fn command_us_quantile(&self, p: f64) -> Option<f64> {
+        let mut v = self.command_seconds.clone();
+        if v.is_empty() {
+            return None;
+        }
+        v.sort_by(f64::total_cmp);
+        let k = ((v.len() - 1) as f64 * p.clamp(0.0, 1.0)).round() as usize;
+        Some(v[k] * 1e6)
+    }
+}
+
+/// Evaluation on its own simulated robot with the true model.
+pub struct Evaluator {
+    sim: SimRobot,
+    osc: Osc,
+    traj: Trajectory,
+    home: Vec<f64>,
+    gains: TaskGains,
+    /// Simulated seconds per evaluation (whole periods; the first is warm-up).
+    pub seconds: f64,
+    /// Keep the last run's time series.
+    pub keep_series: bool,
+    pub series: EvalSeries,
+}
+
+impl Evaluator {
+    /// An evaluator for `model` (the true robot) along `traj`, starting at rest at `home`.
+    pub fn new(
+        model: osrl_dynamics::Model,
+        sim_cfg: SimConfig,
+        traj: Trajectory,
+        home: Vec<f64>,
+        gains: TaskGains,
+        periods: usize,
+    ) -> Result<Self> {
+        let osc = Osc::new(
+            model.clone(),
+            OscConfig {
+                gains,
+                ..OscConfig::default()
+            },
+        )?;
+        let sim = SimRobot::new(
+            model,
+            SimConfig {
+                sensor_noise: Default::default(),
+                actuator_noise: 0.0,
+                ..sim_cfg
+            },
+        )?;
+        let seconds = traj.period() * (periods.max(1) + 1) as f64;
+        Ok(Self {
+            sim,
+            osc,
+            traj,
+            home,
+            gains,
+            seconds,
+            keep_series: false,
+            series: EvalSeries::default(),
+        })
+    }
+
+    /// Runs `learner` (no exploration, no learning) from home for `self.seconds` through
+    /// [`osrl_control::drive`], comparing each command with `u*` at the same state.
+    ///
+    /// # Errors
+    /// A learner or model failure; a diverged run is a result (`diverged`), not an error.
+    pub fn evaluate(&mut self, learner: &mut Learner) -> Result<EvalResult> {
+        let (n, m) = learner.dims();
+        self.sim.reset(&self.home, &vec![0.0; n])?;
+        let axes = self.sim.model().task_axes().to_vec();
+        let dt = self.sim.control_period();
+        let steps = (self.seconds / dt).round() as usize;
+        let mut ctrl = EvalController {
+            learner,
+            gains: self.gains,
+            axes: axes.clone(),
+            xdd_ref: vec![0.0; m],
+            source: CommandSource::Fallback,
+            seconds: 0.0,
+            error: None,
+        };
+        let mut obs = Comparison::new(&mut self.osc, axes, n, m, self.traj.steps_per_period(dt));
+        obs.series = self.keep_series.then(EvalSeries::default);
+        let ended = drive(&mut self.sim, &mut ctrl, &self.traj, steps, &mut obs);
+        if let Some(e) = ctrl.error.take().or_else(|| obs.error.take()) {
+            return Err(e);
+        }
+        let diverged = match ended? {
+            Ended::Completed => false,
+            Ended::Stopped { .. } | Ended::RobotFailed { .. } => true,
+        };
+        self.series = obs.series.take().unwrap_or_default();
+        Ok(obs.result(diverged))
+    }
+}
+
+/// The learner as the evaluated controller: `ẍ_ref` of eq. 2, then the command without
+/// exploration; keeps the command's source and wall time.
+struct EvalController<'a> {
+    learner: &'a mut Learner,
+    gains: TaskGains,
+    axes: Vec<usize>,
+    xdd_ref: Vec<f64>,
+    source: CommandSource,
+    seconds: f64,
+    /// The learner's error, if a command failed.
+    error: Option<LearnError>,
+}
+
+impl TaskController for EvalController<'_> {
+    fn command(
+        &mut self,
+        meas: &Measurement,
+        target: &Target,
+        u: &mut [f64],
+    ) -> osrl_control::Result<()> {
+        let (x, xd) = (meas.x.as_slice(), meas.xd.as_slice());
+        reference_acceleration(&self.gains, target, &self.axes, x, xd, &mut self.xdd_ref);
+        let clock = std::time::Instant::now();
+        let (q, qd) = (meas.q.as_slice(), meas.qd.as_slice());
+        self.source = self
+            .learner
+            .command::<rand_chacha::ChaCha8Rng>(q, qd, &self.xdd_ref, None, u)
+            .map_err(|e| keep(&mut self.error, e))?;
+        self.seconds = clock.elapsed().as_secs_f64();
+        Ok(())
+    }
+}
+
+/// Keeps the first learner error of an evaluation (the driver carries only control errors) and
+/// returns the control error that stops the run.
+fn keep(slot: &mut Option<LearnError>, e: LearnError) -> ControlError {
+    let msg = e.to_string();
+    slot.get_or_insert(e);
+    ControlError::InvalidConfig(format!("learned controller: {msg}"))
+}
+
+/// Compares each evaluated command with the analytical optimum `u*` and accumulates the metrics
+/// (the observer of the evaluation run).
+struct Comparison<'a> {
+    osc: &'a mut Osc,
+    axes: Vec<usize>,
+    /// Steps of the warm-up period (not in the window).
+    warm: usize,
+    u_star: Vec<f64>,
+    u0: Vec<f64>,
+    u0_hat: Vec<f64>,
+    a_hat: Vec<f64>,
+    /// The window of whole periods after the first, and every step (for runs that diverge
+    /// before the window starts).
+    window: Acc,
+    all: Acc,
+    /// The previous step's commands (for the largest command steps).
+    prev_u: Vec<f64>,
+    prev_us: Vec<f64>,
+    step_l: f64,
+    step_a: f64,
+    series: Option<EvalSeries>,
+    /// The learner's or the true model's error, if one failed.
+    error: Option<LearnError>,
+}
+
+impl<'a> Comparison<'a> {
+    fn new(osc: &'a mut Osc, axes: Vec<usize>, n: usize, m: usize, warm: usize) -> Self {
+        Self {
+            osc,
+            axes,
+            warm,
+            u_star: vec![0.0; n],
+            u0: vec![0.0; n],
+            u0_hat: vec![0.0; n],
+            a_hat: vec![0.0; n * m],
+            window: Acc::new(n),
+            all: Acc::new(n),
+            prev_u: vec![0.0; n],
+            prev_us: vec![0.0; n],
+            step_l: 0.0,
+            step_a: 0.0,
+            series: None,
+            error: None,
+        }
+    }
+
+    fn result(&self, diverged: bool) -> EvalResult {
+        let acc = if self.window.count > 0 {
+            &self.window
+        } else {
+            &self.all
+        };
+        acc.result(self.step_l, self.step_a, diverged || self.window.count == 0)
+    }
+
+    /// `u*` (eq. 7 with the true model) and the true `u0` at the step's state.
+    fn optimum(&mut self, meas: &Measurement, xdd_ref: &[f64]) -> Result<()> {
+        let (q, qd) = (meas.q.as_slice(), meas.qd.as_slice());
+        self.osc.nominal(q, qd, &mut self.u0)?;
+        self.osc.solve(q, qd, xdd_ref, &self.u0, &mut self.u_star)?;
+        Ok(())
+    }
+
+    fn record(&mut self, step: &StepView, seconds: f64) {
+        let Some(series) = self.series.as_mut() else {
+            return;
+        };
+        series.t.push(step.meas.t);
+        series
+            .x_d
+            .extend(self.axes.iter().map(|&a| step.target.x[a]));
+        series.x.extend(step.meas.x.iter());
+        series.u.extend(step.u);
+        series.u_star.extend(&self.u_star);
+        series.q.extend(step.meas.q.iter());
+        series.command_seconds.push(seconds);
+    }
+}
+
+impl StepObserver<EvalController<'_>> for Comparison<'_> {
+    fn observe(
+        &mut self,
+        ctrl: &mut EvalController,
+        step: &StepView,
+    ) -> osrl_control::Result<ControlFlow<()>> {
+        let (meas, u) = (step.meas, step.u);
+        let (q, qd) = (meas.q.as_slice(), meas.qd.as_slice());
+        if let Err(e) = self.optimum(meas, &ctrl.xdd_ref) {
+            return Err(keep(&mut self.error, e));
+        }
+        let learner = &mut *ctrl.learner;
+        if let Err(e) = learner.nominal(q, qd, &mut self.u0_hat) {
+            return Err(keep(&mut self.error, e));
+        }
+        // The error split against the true B = J M⁻¹ at this state (0 where B is singular).
+        let truth = TrueGain::new(self.osc.data(), &self.axes);
+        let null2 = truth
+            .as_ref()
+            .map_or(0.0, |t| t.null_part2(u, &self.u_star));
+        let nom_null2 = truth
+            .as_ref()
+            .map_or(0.0, |t| t.null_part2(&self.u0_hat, &self.u0));
+        let has_gain = match learner.input_gain(q, qd, &mut self.a_hat) {
+            Ok(known) => known,
+            Err(e) => return Err(keep(&mut self.error, e)),
+        };
+        let gain_err = truth
+            .filter(|_| has_gain)
+            .map(|t| t.gain_error(&self.a_hat));
+        let nom2: f64 = self
+            .u0_hat
+            .iter()
+            .zip(&self.u0)
+            .map(|(a, b)| (a - b).powi(2))
+            .sum();
+        let e = osrl_control::task_error(step.target, &self.axes, meas.x.as_slice());
+        if step.k > 0 {
+            self.step_l = self.step_l.max(max_abs_diff(&self.prev_u, u));
+            self.step_a = self.step_a.max(max_abs_diff(&self.prev_us, &self.u_star));
+        }
+        self.prev_u.copy_from_slice(u);
+        self.prev_us.copy_from_slice(&self.u_star);
+        self.record(step, ctrl.seconds);
+        let fallback = ctrl.source == CommandSource::Fallback;
+        for (acc, on) in [
+            (&mut self.window, step.k >= self.warm),
+            (&mut self.all, true),
+        ] {
+            if on {
+                acc.add(e, fallback, u, &self.u_star, &self.u0);
+                acc.null2 += null2;
+                acc.nom2 += nom2;
+                acc.nom_null2 += nom_null2;
+                if let Some(g) = gain_err {
+                    acc.gain_err += g;
+                    acc.gain_count += 1;
+                }
+            }
+        }
+        Ok(if e > 0.2 {
+            ControlFlow::Break(())
+        } else {
+            ControlFlow::Continue(())
+        })
+    }
+}
+
+/// The largest per-joint change `max_j |a_j − b_j|` between two commands.
+pub(crate) fn max_abs_diff(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+}

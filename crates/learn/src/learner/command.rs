@@ -1,0 +1,286 @@
+//! The learned command (eq. 34): the activation-weighted blend of the trained local controllers
+//! plus `u0`, extrapolated from the nearest trained ones where none is active, the nominal `u0`
+//! where none is near, exploration on top, then the guards (non-finite blend, torque limits).
+
+use super::exploration::explore;
+use super::nominal::nominal_into;
+use super::{Learner, State};
+use crate::error::{LearnError, Result};
+use rand::Rng;
+
+/// What produced a command.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CommandSource {
+    /// The blend of the trained local controllers (eq. 34).
+    Learned,
+    /// No trained controller active above the cutoff: the blend of the nearest ones (any
+    /// activation above [`EXTRAPOLATION_CUTOFF`]).
+    Extrapolated,
+    /// No trained controller anywhere near: the nominal `u0`.
+    Fallback,
+}
+
+/// Activation cutoff of the extrapolating blend.
+pub const EXTRAPOLATION_CUTOFF: f64 = 1e-12;
+
+/// A blend's weights: `Σ w_i` and `Σ w_i σ_i` of the controllers in it.
+struct Blend {
+    sum_w: f64,
+    sum_sigma: f64,
+    source: CommandSource,
+}
+
+impl Learner {
+    /// The learned command for the reference acceleration `xdd_ref` at `(q, q̇)` into `u`: the
+    /// blend (eq. 34), with exploration noise when `rng` is given, clipped to the torque limits.
+    /// Stages: check → blend → nominal → explore → guard → clip. Does not allocate.
+    ///
+    /// # Errors
+    /// [`LearnError::Dimension`] on wrong slice lengths (nothing counted); a model failure; or
+    /// [`LearnError::NonFinite`] if even `u0` is not finite.
+    pub fn command<R: Rng + ?Sized>(
+        &mut self,
+        q: &[f64],
+        qd: &[f64],
+        xdd_ref: &[f64],
+        rng: Option<&mut R>,
+        u: &mut [f64],
+    ) -> Result<CommandSource> {
+        self.check_command_args(q, qd, xdd_ref, u)?;
+        self.stats.commands += 1;
+        let source = match self.blend(q, qd, xdd_ref, u)? {
+            None => self.fallback(q, qd, u)?,
+            Some(blend) => self.finish_blend(q, qd, blend, rng, u)?,
+        };
+        let source = self.guard_non_finite(q, qd, source, u)?;
+        self.clip(u);
+        Ok(source)
+    }
+
+    fn check_command_args(&self, q: &[f64], qd: &[f64], xdd_ref: &[f64], u: &[f64]) -> Result<()> {
+        let (n, m) = (self.n, self.m);
+        if q.len() != n || qd.len() != n || u.len() != n || xdd_ref.len() != m {
+            return Err(LearnError::Dimension {
+                what: "command arguments",
+                expected: n,
+                got: q.len(),
+            });
+        }
+        Ok(())
+    }
+
+    /// Eq. 34 without `u0`: `Σ w_i u^i` into `u` over the trained controllers active above the
+    /// cutoff, or, if there are none, over those with any activation (extrapolation). `None`
+    /// before the warm-up ends or where no trained controller is near.
+    fn blend(
+        &mut self,
+        q: &[f64],
+        qd: &[f64],
+        xdd_ref: &[f64],
+        u: &mut [f64],
+    ) -> Result<Option<Blend>> {
+        let State::Ready(models) = &mut self.state else {
+            return Ok(None);
+        };
+        let (ws, f) = (&mut self.ws, &self.features);
+        let trained_ess = self.cfg.controllers.trained_ess;
+        f.controller_common(&mut ws.phi, xdd_ref, qd);
+        let mut source = CommandSource::Learned;
+        let (mut sum_w, mut sum_sigma) = (0.0, 0.0);
+        for cut in [self.cfg.partition.activation_cutoff, EXTRAPOLATION_CUTOFF] {
+            models.forward.activations(q, qd, cut, &mut ws.acts)?;
+            u.fill(0.0);
+            for a in &ws.acts {
+                let Some(local) = models.locals.map.get(&a.id) else {
+                    continue;
+                };
+                if local.untrained(trained_ess) {
+                    continue;
+                }
+                f.controller_local(&mut ws.phi, q, &local.center);
+                local.rwr.mean_into(&ws.phi, &mut ws.ui)?;
+                for (o, v) in u.iter_mut().zip(&ws.ui) {
+                    *o += a.w * v;
+                }
+                sum_w += a.w;
+                sum_sigma += a.w * local.rwr.sigma();
+            }
+            if sum_w > 0.0 {
+                break;
+            }
+            source = CommandSource::Extrapolated;
+        }
+        if sum_w <= 0.0 {
+            return Ok(None);
+        }
+        Ok(Some(Blend {
+            sum_w,
+            sum_sigma,
+            source,
+        }))
+    }
+
+    /// Normalises the blend, adds `u0` (residual controllers) and the exploration noise.
+    fn finish_blend<R: Rng + ?Sized>(
+        &mut self,
+        q: &[f64],
+        qd: &[f64],
+        blend: Blend,
+        rng: Option<&mut R>,
+        u: &mut [f64],
+    ) -> Result<CommandSource> {
+        if blend.source == CommandSource::Extrapolated {
+            self.stats.extrapolations += 1;
+        }
+        let sigma = self.cfg.exploration.scale * blend.sum_sigma / blend.sum_w;
+        for v in u.iter_mut() {
+            *v /= blend.sum_w;
+        }
+        if self.cfg.experimental.residual {
+            let u0 = &mut self.ws.u0;
+            nominal_into(
+                &self.cfg.nominal,
+                self.state.models_mut(),
+                self.gravity_frozen,
+                q,
+                qd,
+                u0,
+            )?;
+            for (v, o) in u.iter_mut().zip(u0.iter()) {
+                *v += o;
+            }
+        }
+        if let (Some(rng), State::Ready(models)) = (rng, &self.state) {
+            explore(
+                &self.cfg,
+                &self.features,
+                models,
+                &mut self.ws,
+                q,
+                sigma,
+                rng,
+                u,
+            );
+        }
+        Ok(blend.source)
+    }
+
+    /// The nominal `u0` as the command where no trained controller is near (counted).
+    fn fallback(&mut self, q: &[f64], qd: &[f64], u: &mut [f64]) -> Result<CommandSource> {
+        self.stats.fallbacks += 1;
+        self.nominal(q, qd, u)?;
+        Ok(CommandSource::Fallback)
+    }
+
+    /// Guard: a non-finite blend (a diverged local model) falls back to `u0`, counted.
+    fn guard_non_finite(
+        &mut self,
+        q: &[f64],
+        qd: &[f64],
+        source: CommandSource,
+        u: &mut [f64],
+    ) -> Result<CommandSource> {
+        if u.iter().all(|v| v.is_finite()) {
+            return Ok(source);
+        }
+        self.stats.non_finite += 1;
+        let source = self.fallback(q, qd, u)?;
+        if u.iter().any(|v| !v.is_finite()) {
+            return Err(LearnError::NonFinite("the nominal command u0"));
+        }
+        Ok(source)
+    }
+
+    /// Guard: every joint within its torque limit; a command with a clipped joint is counted.
+    fn clip(&mut self, u: &mut [f64]) {
+        let mut clipped = false;
+        for (v, lim) in u.iter_mut().zip(&self.cfg.guards.torque_limits) {
+            let c = v.clamp(-lim, *lim);
+            clipped |= c != *v;
+            *v = c;
+        }
+        self.stats.clipped += clipped as u64;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::CommandSource;
+    use crate::learner::fixture;
+    use nalgebra::DMatrix;
+    use rwr::OnlineRwr;
+
+    /// With one trained controller the blend (eq. 34) is that controller's mean plus `u0`, from
+    /// any activation; with none, the command is `u0` and counted as a fallback.
+    #[test]
+    fn a_one_field_blend_equals_that_fields_mean_plus_u0() {
+        let mut cfg = fixture::config();
+        cfg.controllers.trained_ess = 1e8;
+        let (mut learner, _, last) = fixture::ready(cfg, 200, 0);
+        let (q, qd) = (last.q.as_slice().to_vec(), last.qd.as_slice().to_vec());
+        let xdd = [0.3, -0.2];
+        let (mut u, mut u0) = ([0.0; 3], [0.0; 3]);
+        assert_eq!(
+            learner
+                .command::<rand_chacha::ChaCha8Rng>(&q, &qd, &xdd, None, &mut u)
+                .unwrap(),
+            CommandSource::Fallback
+        );
+        learner.nominal(&q, &qd, &mut u0).unwrap();
+        assert_eq!(u, u0);
+        // Train one field by hand: a known β, and an effective sample size above the threshold.
+        let p = learner.features.controller_len();
+        let beta = DMatrix::from_fn(p, 3, |r, c| 0.01 * (r as f64 + 1.0) * (c as f64 - 1.0));
+        let rwr_cfg = learner.cfg.controllers.rwr.clone();
+        let models = fixture::models(&mut learner);
+        let (id, local) = models.locals.map.iter_mut().next().unwrap();
+        let id = *id;
+        local.rwr = OnlineRwr::with_theta(beta.clone(), rwr_cfg).unwrap();
+        local.ess = 1e9;
+        let center = local.center.clone();
+        // At the field's centre, and where it is far (extrapolated), the blend is its mean.
+        for (qq, source) in [
+            (center[..3].to_vec(), CommandSource::Learned),
+            (
+                center[..3].iter().map(|c| c + 0.27).collect(),
+                CommandSource::Extrapolated,
+            ),
+        ] {
+            let vd = center[3..].to_vec();
+            let src = learner.command::<rand_chacha::ChaCha8Rng>(&qq, &vd, &xdd, None, &mut u);
+            assert_eq!(src.unwrap(), source, "field {id:?}");
+            let mut phi = vec![0.0; p];
+            learner.features.controller_common(&mut phi, &xdd, &vd);
+            learner.features.controller_local(&mut phi, &qq, &center);
+            learner.nominal(&qq, &vd, &mut u0).unwrap();
+            for j in 0..3 {
+                let mean: f64 = (0..p).map(|r| phi[r] * beta[(r, j)]).sum();
+                let want = mean + u0[j];
+                assert!(
+                    (u[j] - want).abs() < 1e-12 * (1.0 + want.abs()),
+                    "{u:?} vs {want}"
+                );
+            }
+        }
+        assert_eq!(learner.stats().extrapolations, 1);
+    }
+
+    /// The guards: wrong lengths are refused uncounted; commands stay within the torque limits.
+    #[test]
+    fn wrong_lengths_are_refused_and_limits_hold() {
+        let mut cfg = fixture::config();
+        cfg.guards.torque_limits = vec![0.1, 0.1, 0.1];
+        let (mut learner, _, last) = fixture::ready(cfg, 100, 0);
+        let before = learner.stats();
+        let mut u = [0.0; 3];
+        let q = last.q.as_slice();
+        let bad = learner.command::<rand_chacha::ChaCha8Rng>(&q[..2], q, &[0.0; 2], None, &mut u);
+        assert!(matches!(bad, Err(crate::LearnError::Dimension { .. })));
+        assert_eq!(learner.stats(), before);
+        learner
+            .command::<rand_chacha::ChaCha8Rng>(q, q, &[0.0; 2], None, &mut u)
+            .unwrap();
+        assert!(u.iter().all(|v| v.abs() <= 0.1), "{u:?}");
+        assert_eq!(learner.stats().clipped, before.clipped + 1);
+    }
+}

@@ -1,0 +1,154 @@
+//! The feature layouts of the learner: `φ` of the local controllers (eq. 31) and `φ_d` of the
+//! local dynamics regressions (`docs/learner.md`, "Features"). One type owns both, so the command,
+//! the hindsight update and the gain `Â(q)` read the same positions.
+
+use nalgebra::DMatrix;
+
+/// Where each part of the two feature vectors lives, for `n` joints and `m` task dimensions.
+///
+/// - controller `φ = [ẍᵀ, q̇ᵀ, (q − c)ᵀ?, 1]` (eq. 31; `ẍ` is `ẍ_ref` when commanding and the
+///   measured `ẍ` in hindsight; the position part is optional);
+/// - local dynamics `φ_d = [uᵀ, q̇ᵀ, (q − c)ᵀ, 1, (u_j (q_k − c_k))?]`, regressed on `ẍ`; its `u`
+///   rows (and the bilinear ones) give `Â(q) = ∂ẍ/∂u`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Features {
+    n: usize,
+    m: usize,
+    position: bool,
+    bilinear: bool,
+}
+
+impl Features {
+    pub fn new(n: usize, m: usize, position: bool, bilinear: bool) -> Self {
+        Self {
+            n,
+            m,
+            position,
+            bilinear,
+        }
+    }
+
+    /// Length of the controller features `φ`.
+    pub fn controller_len(&self) -> usize {
+        self.m + self.n + 1 + if self.position { self.n } else { 0 }
+    }
+
+    /// Length of the local dynamics features `φ_d`.
+    pub fn dynamics_len(&self) -> usize {
+        3 * self.n + 1 + if self.bilinear { self.n * self.n } else { 0 }
+    }
+
+    /// The parts of `φ` shared by every receptive field: `ẍ`, `q̇` and the constant.
+    pub fn controller_common(&self, phi: &mut [f64], xdd: &[f64], qd: &[f64]) {
+        let (n, m) = (self.n, self.m);
+        phi[..m].copy_from_slice(xdd);
+        phi[m..m + n].copy_from_slice(qd);
+        let last = phi.len() - 1;
+        phi[last] = 1.0;
+    }
+
+    /// The part of `φ` of the field centred at `center` (`q − c`), if the layout has it.
+    pub fn controller_local(&self, phi: &mut [f64], q: &[f64], center: &[f64]) {
+        if self.position {
+            let (n, m) = (self.n, self.m);
+            for i in 0..n {
+                phi[m + n + i] = q[i] - center[i];
+            }
+        }
+    }
+
+    /// The parts of `φ_d` shared by every receptive field: `u`, `q̇` and the constant.
+    pub fn dynamics_common(&self, phi_d: &mut [f64], u: &[f64], qd: &[f64]) {
+        let n = self.n;
+        phi_d[..n].copy_from_slice(u);
+        phi_d[n..2 * n].copy_from_slice(qd);
+        phi_d[3 * n] = 1.0;
+    }
+
+    /// The parts of `φ_d` of the field centred at `center`: `q − c` and the bilinear terms.
+    pub fn dynamics_local(&self, phi_d: &mut [f64], q: &[f64], u: &[f64], center: &[f64]) {
+        let n = self.n;
+        for i in 0..n {
+            phi_d[2 * n + i] = q[i] - center[i];
+        }
+        if self.bilinear {
+            for j in 0..n {
+                for k in 0..n {
+                    phi_d[3 * n + 1 + j * n + k] = u[j] * phi_d[2 * n + k];
+                }
+            }
+        }
+    }
+
+    /// Adds `w · Â_i(q)` (m×n, row-major into `a`) of one field's dynamics coefficients `theta`
+    /// (`φ_d`-rows × m): `Â_i(q) = Θ_u + Σ_k (q_k − c_k) Θ_{u_j q_k}`.
+    pub fn add_gain(&self, theta: &DMatrix<f64>, q: &[f64], center: &[f64], w: f64, a: &mut [f64]) {
+        let n = self.n;
+        for k in 0..self.m {
+            for j in 0..n {
+                let mut g = theta[(j, k)];
+                if self.bilinear {
+                    for i in 0..n {
+                        g += (q[i] - center[i]) * theta[(3 * n + 1 + j * n + i, k)];
+                    }
+                }
+                a[k * n + j] += w * g;
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Features;
+    use nalgebra::DMatrix;
+
+    #[test]
+    fn layouts_have_the_documented_lengths_and_positions() {
+        let f = Features::new(3, 2, true, true);
+        assert_eq!(f.controller_len(), 2 + 3 + 3 + 1);
+        assert_eq!(f.dynamics_len(), 3 * 3 + 1 + 9);
+        assert_eq!(Features::new(3, 2, false, false).controller_len(), 6);
+        assert_eq!(Features::new(3, 2, false, false).dynamics_len(), 10);
+        let mut phi = vec![f64::NAN; f.controller_len()];
+        f.controller_common(&mut phi, &[1.0, 2.0], &[3.0, 4.0, 5.0]);
+        f.controller_local(&mut phi, &[1.0, 1.0, 1.0], &[0.5, 0.0, 2.0]);
+        assert_eq!(phi, [1.0, 2.0, 3.0, 4.0, 5.0, 0.5, 1.0, -1.0, 1.0]);
+        let mut d = vec![f64::NAN; f.dynamics_len()];
+        f.dynamics_common(&mut d, &[1.0, 2.0, 3.0], &[4.0, 5.0, 6.0]);
+        f.dynamics_local(&mut d, &[1.0, 1.0, 1.0], &[1.0, 2.0, 3.0], &[0.0, 1.0, 2.0]);
+        assert_eq!(
+            &d[..10],
+            &[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 1.0, 0.0, -1.0, 1.0]
+        );
+        // u_j (q_k − c_k), row j.
+        assert_eq!(&d[10..], &[1.0, 0.0, -1.0, 2.0, 0.0, -2.0, 3.0, 0.0, -3.0]);
+    }
+
+    #[test]
+    fn the_gain_is_linear_in_q_and_equals_the_u_rows_at_the_centre() {
+        // With φ_d · Θ the dynamics, ∂ẍ_k/∂u_j at q equals Θ[j,k] + Σ_i (q_i − c_i) Θ[bilinear].
+        let f = Features::new(2, 1, false, true);
+        let theta = DMatrix::from_fn(f.dynamics_len(), 1, |r, _| 0.1 * r as f64 + 0.3);
+        let c = [0.2, -0.1];
+        let mut a = [0.0; 2];
+        f.add_gain(&theta, &c, &c, 1.0, &mut a);
+        assert_eq!(a, [theta[(0, 0)], theta[(1, 0)]]);
+        // Finite difference of the prediction φ_d(u) · Θ in u, at another q.
+        let q = [0.5, 0.4];
+        let predict = |u: [f64; 2]| {
+            let mut d = vec![0.0; f.dynamics_len()];
+            f.dynamics_common(&mut d, &u, &[0.0, 0.0]);
+            f.dynamics_local(&mut d, &q, &u, &c);
+            (0..d.len()).map(|r| d[r] * theta[(r, 0)]).sum::<f64>()
+        };
+        let mut a = [0.0; 2];
+        f.add_gain(&theta, &q, &c, 2.0, &mut a);
+        for j in 0..2 {
+            let mut u = [0.3, -0.7];
+            let base = predict(u);
+            u[j] += 1.0;
+            assert!((predict(u) - base - a[j] / 2.0).abs() < 1e-12);
+        }
+    }
+}

@@ -1,0 +1,256 @@
+//! The learning step once the models exist (paper section IV, `docs/learner.md`): the supervised
+//! models learn the transition, the local controllers follow the partition, and the executed
+//! command becomes a hindsight sample — relabelled with the measured `ẍ`, its target shrunk in
+//! the null space of `Â`, weighted by the transformed cost — for every active local controller,
+//! whose M-step runs when due.
+
+use super::cost::{cost, shrink_target};
+use super::nominal::nominal_into;
+use super::stats::{LearnerStats, Scratch};
+use super::{Features, Learner, Models, State};
+use crate::config::LearnerConfig;
+use crate::error::Result;
+use crate::local::{LocalSpec, MStep};
+use lwpr::RfEvent;
+use osrl_dynamics::Measurement;
+
+/// The parts of a ready learner that one learning step uses.
+struct Step<'a> {
+    cfg: &'a LearnerConfig,
+    features: &'a Features,
+    models: &'a mut Models,
+    stats: &'a mut LearnerStats,
+    ws: &'a mut Scratch,
+    n: usize,
+    m: usize,
+    dt: f64,
+    gravity_frozen: bool,
+}
+
+impl Learner {
+    /// Learns from a checked transition `prev → cur` once the models exist (nothing before).
+    pub(crate) fn learn_ready(&mut self, prev: &Measurement, cur: &Measurement) -> Result<()> {
+        let State::Ready(models) = &mut self.state else {
+            return Ok(());
+        };
+        Step {
+            cfg: &self.cfg,
+            features: &self.features,
+            models,
+            stats: &mut self.stats,
+            ws: &mut self.ws,
+            n: self.n,
+            m: self.m,
+            dt: self.dt,
+            gravity_frozen: self.gravity_frozen,
+        }
+        .run(prev, cur)
+    }
+}
+
+impl Step<'_> {
+    /// Stages: supervised models → prune → follow the partition → relabel → cost → local
+    /// updates.
+    fn run(&mut self, prev: &Measurement, cur: &Measurement) -> Result<()> {
+        self.stats.samples += 1;
+        self.learn_supervised(prev, cur)?;
+        self.prune_idle_untrained()?;
+        self.follow_partition(cur)?;
+        let known = self.relabel(cur)?;
+        let r = cost(self.cfg, known, self.ws);
+        self.update_locals(cur, r)
+    }
+
+    /// The models that learn from every transition without rewards: `ĝ` (unless frozen) and the
+    /// forward model (every `partition.learn_every`-th transition).
+    fn learn_supervised(&mut self, prev: &Measurement, cur: &Measurement) -> Result<()> {
+        let (q, qd, u) = (cur.q.as_slice(), cur.qd.as_slice(), cur.u.as_slice());
+        let dt = cur.t - prev.t;
+        if dt > 0.0 && !self.gravity_frozen {
+            let (q0, qd0) = (prev.q.as_slice(), prev.qd.as_slice());
+            self.models.gravity.learn(q0, qd0, q, qd, u, dt)?;
+            if let Some(g) = self.models.gravity_static.as_mut() {
+                g.learn(q0, qd0, q, qd, u, dt)?;
+            }
+        }
+        let every = self.cfg.partition.learn_every as u64;
+        if self.stats.samples.is_multiple_of(every) {
+            self.models.forward.learn(q, qd, u, cur.xdd.as_slice())?;
+        }
+        Ok(())
+    }
+
+    /// Once per second of learning: removes from the partition the fields whose controller is
+    /// untrained and that were idle for `partition.prune_untrained_after`; their `Pruned` events
+    /// then drop the controllers.
+    fn prune_idle_untrained(&mut self) -> Result<()> {
+        let Some(after) = self.cfg.partition.prune_untrained_after else {
+            return Ok(());
+        };
+        let per_second = (1.0 / self.dt).round().max(1.0) as u64;
+        let idle = (after / self.dt).ceil() as u64;
+        let now = self.stats.samples;
+        if !now.is_multiple_of(per_second) || now <= idle {
+            return Ok(());
+        }
+        self.ws.stale.clear();
+        let ess = self.cfg.controllers.trained_ess;
+        let models = &mut *self.models;
+        models
+            .locals
+            .stale_untrained(ess, now - idle, &mut self.ws.stale);
+        for id in &self.ws.stale {
+            self.stats.pruned_untrained += models.forward.remove(*id)? as u64;
+        }
+        Ok(())
+    }
+
+    /// New receptive fields get a controller, pruned ones lose theirs (exactly one each).
+    fn follow_partition(&mut self, cur: &Measurement) -> Result<()> {
+        let (q, qd) = (cur.q.as_slice(), cur.qd.as_slice());
+        self.ws.events.clear();
+        self.models.forward.drain_events(&mut self.ws.events);
+        let init: &[f64] = if self.cfg.experimental.residual {
+            &[]
+        } else {
+            cur.u.as_slice()
+        };
+        let spec = LocalSpec {
+            p: self.features.controller_len(),
+            n: self.n,
+            m: self.m,
+            dynamics_features: self.features.dynamics_len(),
+            dynamics_forgetting: self.cfg.dynamics.forgetting,
+            rwr: &self.cfg.controllers.rwr,
+            trained_ess: self.cfg.controllers.trained_ess,
+        };
+        let models = &mut *self.models;
+        for event in &self.ws.events {
+            match *event {
+                RfEvent::Added {
+                    id, copied_from, ..
+                } => {
+                    let center = models
+                        .forward
+                        .center(id)
+                        .unwrap_or_else(|| [q, qd].concat());
+                    let now = self.stats.samples;
+                    models
+                        .locals
+                        .add(id, center, copied_from, init, &spec, now)?;
+                }
+                RfEvent::Pruned { id, .. } => models.locals.remove(id),
+            }
+        }
+        Ok(())
+    }
+
+    /// Hindsight relabelling: the executed `u` with the measured `ẍ` is a sample of the policy
+    /// that commands that `ẍ`. Sets `ws.du = u − u0`, the regression target (`u − u0`, shrunk in
+    /// the null space of `Â`, or `u`), the active fields and `Â`; returns whether `Â` is known.
+    fn relabel(&mut self, cur: &Measurement) -> Result<bool> {
+        let (q, qd, u) = (cur.q.as_slice(), cur.qd.as_slice(), cur.u.as_slice());
+        let ws = &mut *self.ws;
+        let models = &mut *self.models;
+        nominal_into(
+            &self.cfg.nominal,
+            Some(&mut *models),
+            self.gravity_frozen,
+            q,
+            qd,
+            &mut ws.u0,
+        )?;
+        let residual = self.cfg.experimental.residual;
+        for (i, &ui) in u.iter().enumerate() {
+            ws.du[i] = ui - ws.u0[i];
+            ws.target[i] = if residual { ws.du[i] } else { ui };
+        }
+        let cutoff = self.cfg.partition.activation_cutoff;
+        models.forward.activations(q, qd, cutoff, &mut ws.acts)?;
+        let known = models.blended_gain(self.features, &ws.acts, q, &mut ws.a_hat);
+        if known && residual {
+            shrink_target(self.cfg.controllers.null_space_shrink, ws);
+        }
+        Ok(known)
+    }
+
+    /// Every active field: its local dynamics learn `u → ẍ`, its controller the hindsight sample
+    /// with cost `r`, and the M-steps run when due (counted).
+    fn update_locals(&mut self, cur: &Measurement, r: f64) -> Result<()> {
+        let (q, qd, u) = (cur.q.as_slice(), cur.qd.as_slice(), cur.u.as_slice());
+        let xdd = cur.xdd.as_slice();
+        let (f, ws) = (self.features, &mut *self.ws);
+        f.controller_common(&mut ws.phi, xdd, qd);
+        f.dynamics_common(&mut ws.phi_d, u, qd);
+        let now = self.stats.samples;
+        let dyn_now = now.is_multiple_of(self.cfg.dynamics.learn_every as u64);
+        let update_every = self.cfg.controllers.update_every;
+        let solve_every = self.cfg.dynamics.solve_every as u64;
+        for a in &ws.acts {
+            let Some(local) = self.models.locals.map.get_mut(&a.id) else {
+                continue;
+            };
+            local.last_active = now;
+            if dyn_now {
+                f.dynamics_local(&mut ws.phi_d, q, u, &local.center);
+                local.dynamics.observe(&ws.phi_d, xdd, 0.0, a.w)?;
+            }
+            f.controller_local(&mut ws.phi, q, &local.center);
+            match local.observe(&ws.phi, &ws.target, r, a.w, update_every, solve_every)? {
+                Some(MStep::Done) => self.stats.m_steps += 1,
+                Some(MStep::Failed) => self.stats.failed_m_steps += 1,
+                None => {}
+            }
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::learner::fixture;
+    use lwpr::RfId;
+
+    /// Each `Added` event adds exactly one local controller with the field's id, each `Pruned`
+    /// event removes exactly that one: the partition and the controllers stay one to one.
+    #[test]
+    fn partition_events_add_and_remove_exactly_one_controller() {
+        let (mut learner, mut sim, _) = fixture::ready(fixture::config(), 200, 50);
+        let (fwd, locals) = fixture::ids(&learner);
+        assert!(!fwd.is_empty());
+        assert_eq!(fwd, locals);
+        // Prune one field by hand: the next learning step drops its controller only.
+        let gone = fwd[0];
+        assert!(fixture::models(&mut learner)
+            .forward
+            .remove(RfId(gone))
+            .unwrap());
+        fixture::sweep(&mut learner, &mut sim, 1);
+        let (fwd2, locals2) = fixture::ids(&learner);
+        assert_eq!(fwd2, locals2);
+        assert!(!locals2.contains(&gone));
+        assert!(locals2.len() >= locals.len() - 1);
+        // More sweeping adds fields; every new one gets exactly one controller.
+        fixture::sweep(&mut learner, &mut sim, 3000);
+        let (fwd3, locals3) = fixture::ids(&learner);
+        assert!(fwd3.len() > fwd2.len(), "{} vs {}", fwd3.len(), fwd2.len());
+        assert_eq!(fwd3, locals3);
+    }
+
+    /// Every active field gets the sample; an M-step runs after `update_every` of them.
+    #[test]
+    fn m_steps_run_every_update_every_samples() {
+        let mut cfg = fixture::config();
+        cfg.controllers.update_every = 10;
+        let (learner, _, _) = fixture::ready(cfg, 100, 400);
+        let s = learner.stats();
+        // No field was pruned in 1 s, so the controllers' M-steps are all there are.
+        assert_eq!(s.pruned_untrained, 0);
+        let updates: u64 = learner.local_summaries().iter().map(|l| l.updates).sum();
+        assert_eq!(s.m_steps, updates);
+        assert!(s.m_steps > 0, "{s:?}");
+        // A field active in all 501 samples has had at most 501 / 10 M-steps.
+        assert!(learner.local_summaries().iter().all(|l| l.updates <= 50));
+        assert_eq!(s.samples, 501);
+    }
+}

@@ -1,0 +1,119 @@
+//! [`Learner::learn`]: the measurement guards, the warm-up, and the hand-over to the learning
+//! step of `hindsight.rs` once the models exist.
+
+use super::{Learner, Models, State};
+use crate::error::{LearnError, Result};
+use osrl_dynamics::Measurement;
+
+impl Learner {
+    /// Checks a measurement: right sizes, finite, and not absurd (`guards`).
+    ///
+    /// # Errors
+    /// [`LearnError::BadMeasurement`] saying what is wrong.
+    pub fn check(&self, meas: &Measurement) -> Result<()> {
+        let (n, m) = (self.n, self.m);
+        let sizes = [meas.q.len(), meas.qd.len(), meas.u.len()];
+        let task = [meas.x.len(), meas.xd.len(), meas.xdd.len()];
+        if sizes.iter().any(|&k| k != n) || task.iter().any(|&k| k != m) {
+            return Err(LearnError::BadMeasurement(format!(
+                "sizes do not match a robot with {n} joints and {m} task dimensions"
+            )));
+        }
+        let all = meas
+            .q
+            .iter()
+            .chain(meas.qd.iter())
+            .chain(meas.u.iter())
+            .chain(meas.x.iter())
+            .chain(meas.xd.iter())
+            .chain(meas.xdd.iter());
+        if let Some(v) = all.clone().find(|v| !v.is_finite()) {
+            return Err(LearnError::BadMeasurement(format!("non-finite value {v}")));
+        }
+        let g = &self.cfg.guards;
+        if meas.xdd.amax() > g.max_abs_acceleration || meas.qd.amax() > g.max_abs_velocity {
+            return Err(LearnError::BadMeasurement(format!(
+                "absurd: |ẍ| = {:.3e} m/s² (limit {:.3e}), |q̇| = {:.3e} rad/s (limit {:.3e})",
+                meas.xdd.amax(),
+                g.max_abs_acceleration,
+                meas.qd.amax(),
+                g.max_abs_velocity
+            )));
+        }
+        Ok(())
+    }
+
+    /// Learns from the transition `prev → cur` (the command `cur.u` was held in between).
+    ///
+    /// # Errors
+    /// [`LearnError::BadMeasurement`] for a rejected measurement (counted; nothing else
+    /// changes), or a model failure.
+    pub fn learn(&mut self, prev: &Measurement, cur: &Measurement) -> Result<()> {
+        if let Err(e) = self.check(cur).and_then(|_| self.check(prev)) {
+            self.stats.rejected += 1;
+            return Err(e);
+        }
+        match &mut self.state {
+            State::Ready(_) => self.learn_ready(prev, cur),
+            State::WarmUp(warm) => {
+                if warm.is_empty() {
+                    warm.push(prev.clone());
+                }
+                warm.push(cur.clone());
+                if warm.len() > self.cfg.guards.warmup_samples {
+                    self.init_models()?;
+                }
+                Ok(())
+            }
+        }
+    }
+
+    /// The models from the warm-up data, then the warm-up replayed into them.
+    fn init_models(&mut self) -> Result<()> {
+        let warm = match std::mem::replace(&mut self.state, State::WarmUp(Vec::new())) {
+            State::WarmUp(w) => w,
+            ready => {
+                self.state = ready;
+                return Ok(());
+            }
+        };
+        let models = match Models::from_warm_up(&self.cfg, self.n, self.m, self.dt, &warm) {
+            Ok(models) => models,
+            Err(e) => {
+                self.state = State::WarmUp(warm);
+                return Err(e);
+            }
+        };
+        self.state = State::Ready(Box::new(models));
+        for k in 1..warm.len() {
+            self.learn_ready(&warm[k - 1], &warm[k])?;
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::learner::fixture;
+    use crate::Learner;
+
+    /// The models are made after `warmup_samples` transitions, and the warm-up is replayed
+    /// into them (every transition counts as a sample once).
+    #[test]
+    fn the_warm_up_becomes_the_models_and_is_replayed() {
+        let mut cfg = fixture::config();
+        cfg.guards.warmup_samples = 50;
+        let mut learner = Learner::new(3, 2, 0.002, cfg).unwrap();
+        let mut sim = fixture::robot();
+        fixture::sweep(&mut learner, &mut sim, 49);
+        assert!(!learner.ready());
+        assert_eq!(learner.stats().samples, 0);
+        assert!(learner.forward_model().is_none());
+        fixture::sweep(&mut learner, &mut sim, 1);
+        assert!(learner.ready());
+        assert_eq!(learner.stats().samples, 50);
+        assert!(learner.n_local_models() > 0);
+        fixture::sweep(&mut learner, &mut sim, 10);
+        assert_eq!(learner.stats().samples, 60);
+    }
+}

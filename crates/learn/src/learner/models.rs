@@ -1,0 +1,127 @@
+//! The learner's models once the warm-up is over: the gravity model `ĝ` (and its static
+//! variant), the forward model (the partition) and the local controllers on it; made from the
+//! warm-up's scales.
+
+use crate::config::LearnerConfig;
+use crate::error::Result;
+use crate::forward::ForwardModel;
+use crate::gravity::GravityModel;
+use crate::local::LocalControllers;
+use osrl_dynamics::Measurement;
+use serde::{Deserialize, Serialize};
+
+/// Everything the learner has learned.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub(crate) struct Models {
+    pub gravity: GravityModel,
+    /// The static gravity model (`gravity.static_gate`), used for `u0` once `ĝ` is frozen.
+    pub gravity_static: Option<GravityModel>,
+    pub forward: ForwardModel,
+    pub locals: LocalControllers,
+    /// Standard deviation of each joint's torque during the warm-up (N·m).
+    pub torque_scale: Vec<f64>,
+}
+
+/// Standard deviation of `f` over the warm-up, at least 1e-3.
+fn std_of(warm: &[Measurement], f: &dyn Fn(&Measurement) -> f64) -> f64 {
+    let k = warm.len() as f64;
+    let mean = warm.iter().map(f).sum::<f64>() / k;
+    let var = warm.iter().map(|w| (f(w) - mean).powi(2)).sum::<f64>() / k;
+    var.sqrt().max(1e-3)
+}
+
+impl Models {
+    /// The models for `n` joints and `m` task dimensions, scaled by the warm-up `warm` (control
+    /// period `dt`): torques per joint, task accelerations, joint accelerations.
+    pub fn from_warm_up(
+        cfg: &LearnerConfig,
+        n: usize,
+        m: usize,
+        dt: f64,
+        warm: &[Measurement],
+    ) -> Result<Self> {
+        let torque: Vec<f64> = (0..n).map(|i| std_of(warm, &|w| w.u[i])).collect();
+        let acc = (0..m)
+            .map(|k| std_of(warm, &|w| w.xdd[k]))
+            .fold(0.0, f64::max);
+        let jacc = (1..warm.len())
+            .map(|k| ((&warm[k].qd - &warm[k - 1].qd) / dt).amax())
+            .fold(0.0, f64::max)
+            .max(1.0)
+            / 3.0;
+        let vs = cfg.partition.velocity_scale;
+        let x = &cfg.experimental;
+        let gravity = GravityModel::new(
+            n,
+            &cfg.gravity.lwpr,
+            x.gravity_velocity_products,
+            vs,
+            jacc,
+            &torque,
+        )?;
+        let gravity_static = match cfg.gravity.static_gate {
+            Some(gate) => Some(GravityModel::new_static(
+                n,
+                &cfg.gravity.lwpr,
+                gate,
+                vs,
+                jacc,
+                &torque,
+            )?),
+            None => None,
+        };
+        let forward = ForwardModel::new(
+            n,
+            m,
+            &cfg.partition.lwpr,
+            vs,
+            &torque,
+            acc,
+            x.forward_uses_q,
+        )?;
+        Ok(Self {
+            gravity,
+            gravity_static,
+            forward,
+            locals: LocalControllers::default(),
+            torque_scale: torque,
+        })
+    }
+
+    /// Re-creates the query buffers that serialisation skips.
+    pub fn restore_buffers(&mut self) {
+        self.gravity.restore_buffers();
+        if let Some(g) = self.gravity_static.as_mut() {
+            g.restore_buffers();
+        }
+        self.forward.restore_buffers();
+    }
+
+    /// `Â = Σ w_i Â_i(q) / Σ w_i` (m×n row-major into `a`) over the activations `acts` of fields
+    /// whose local dynamics have been fitted; `false` if there is none.
+    pub fn blended_gain(
+        &self,
+        features: &super::Features,
+        acts: &[lwpr::Activation],
+        q: &[f64],
+        a: &mut [f64],
+    ) -> bool {
+        a.fill(0.0);
+        let mut sum_w = 0.0;
+        for act in acts {
+            let Some(local) = self.locals.map.get(&act.id) else {
+                continue;
+            };
+            if local.dynamics_updates == 0 {
+                continue;
+            }
+            features.add_gain(local.dynamics.theta(), q, &local.center, act.w, a);
+            sum_w += act.w;
+        }
+        if sum_w <= 0.0 {
+            return false;
+        }
+        a.iter_mut().for_each(|v| *v /= sum_w);
+        true
+    }
+}

@@ -1,0 +1,71 @@
+//! The learner's counters (what it did and refused) and its preallocated scratch buffers.
+
+use lwpr::{Activation, RfEvent, RfId};
+
+/// Counters of what the learner did and refused.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct LearnerStats {
+    /// Transitions learned from.
+    pub samples: u64,
+    /// Measurements rejected (non-finite or absurd).
+    pub rejected: u64,
+    /// Commands computed, and those that fell back to `u0`: no trained controller was active,
+    /// or the blend was not finite (then also counted in `non_finite`).
+    pub commands: u64,
+    pub fallbacks: u64,
+    /// Commands extrapolated from trained controllers active below the cutoff.
+    pub extrapolations: u64,
+    /// Receptive fields removed by `partition.prune_untrained_after` (with their controllers).
+    pub pruned_untrained: u64,
+    /// Commands with at least one joint clipped to its torque limit.
+    pub clipped: u64,
+    /// Commands whose learned blend was not finite and fell back to `u0`.
+    pub non_finite: u64,
+    /// Local M-steps done and those that failed (too few samples).
+    pub m_steps: u64,
+    pub failed_m_steps: u64,
+}
+
+/// Scratch buffers of the learning step and the command (allocated once, by [`Scratch::new`]).
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Scratch {
+    pub acts: Vec<Activation>,
+    pub events: Vec<RfEvent>,
+    /// Receptive fields to prune.
+    pub stale: Vec<RfId>,
+    /// Controller features `φ` and local dynamics features `φ_d`.
+    pub phi: Vec<f64>,
+    pub phi_d: Vec<f64>,
+    /// Per joint: `u0`, `u − u0` (or noise), its null-space part, one controller's mean, the
+    /// hindsight target.
+    pub u0: Vec<f64>,
+    pub du: Vec<f64>,
+    pub z: Vec<f64>,
+    pub ui: Vec<f64>,
+    pub target: Vec<f64>,
+    /// `Â` (m×n), and the m-vector and m×m matrix of its null-space algebra.
+    pub a_hat: Vec<f64>,
+    pub y: Vec<f64>,
+    pub s: Vec<f64>,
+}
+
+impl Scratch {
+    /// Buffers for `n` joints, `m` task dimensions, `p` controller and `pd` dynamics features.
+    pub fn new(n: usize, m: usize, p: usize, pd: usize) -> Self {
+        Self {
+            acts: Vec::with_capacity(4096),
+            events: Vec::with_capacity(16),
+            stale: Vec::with_capacity(4096),
+            phi: vec![0.0; p],
+            phi_d: vec![0.0; pd],
+            u0: vec![0.0; n],
+            du: vec![0.0; n],
+            z: vec![0.0; n],
+            ui: vec![0.0; n],
+            target: vec![0.0; n],
+            a_hat: vec![0.0; m * n],
+            y: vec![0.0; m],
+            s: vec![0.0; m * m],
+        }
+    }
+}

@@ -1,0 +1,135 @@
+//! Settings of a training run: the babbling phase and the on-policy phase.
+
+use crate::error::{LearnError, Result};
+use osrl_control::TaskGains;
+use serde::{Deserialize, Serialize};
+
+/// Motor babbling: random point-to-point joint movements (minimum jerk) under PD control with
+/// the learned gravity compensation, with torque noise.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct BabbleConfig {
+    /// Simulated minutes of babbling before on-policy learning. Default 4: enough data for the
+    /// gravity model and the local dynamics near the path.
+    pub minutes: f64,
+    /// Targets are drawn uniformly within ± this of the home posture (rad), inside the joint
+    /// limits. Default `None`: `min(0.4, 1.4/n)` for `n` joints, so the babbling data stay dense
+    /// near the path as the joint space grows.
+    pub spread: Option<f64>,
+    /// Duration of one move (s), drawn uniformly in this range. Default [0.6, 1.5].
+    pub move_time: [f64; 2],
+    /// Holding time at each target (s), without noise, so the arm comes to rest there (the still
+    /// samples of the static gravity model). Default 0.5.
+    pub settle: f64,
+    /// Scale of the robot's PD gains while babbling. Default 3: stiff enough to follow the moves
+    /// with the untrained gravity model.
+    pub gain_scale: f64,
+    /// White Gaussian torque noise while babbling, as the PD error (rad) it equals: joint `j`
+    /// gets standard deviation `noise · K_Pq,j` (N·m). It makes the commands vary independently
+    /// of the state, so the local dynamics `Â = ∂ẍ/∂u` are identifiable. Default 0.02.
+    pub noise: f64,
+}
+
+impl Default for BabbleConfig {
+    fn default() -> Self {
+        Self {
+            minutes: 4.0,
+            spread: None,
+            move_time: [0.6, 1.5],
+            settle: 0.5,
+            gain_scale: 3.0,
+            noise: 0.02,
+        }
+    }
+}
+
+impl BabbleConfig {
+    /// The spread of the babbling targets for `n` joints (rad): the set value or the default
+    /// `min(0.4, 1.4/n)`.
+    pub fn spread_for(&self, n: usize) -> f64 {
+        self.spread
+            .unwrap_or_else(|| (1.4 / n.max(1) as f64).min(0.4))
+    }
+}
+
+/// Settings of a training run.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct TrainConfig {
+    /// Simulated minutes of training in all, babbling included. Default 30.
+    pub minutes: f64,
+    pub babble: BabbleConfig,
+    /// Task-space gains of the reference dynamics (eq. 2).
+    pub gains: TaskGains,
+    /// On-policy episodes last this long (s) unless the error grows too large. Default 40.
+    pub episode_seconds: f64,
+    /// An episode stops when the task error exceeds this (m); the arm returns home. Default 0.05.
+    pub reset_error: f64,
+    /// Evaluate every this many simulated training minutes (0: only at the end). Default 2.
+    pub eval_every_minutes: f64,
+    /// Learn from every k-th transition (≥ 1; 1 = all). Default 1.
+    pub learn_every: usize,
+    /// Learn during the on-policy phase (false: babbling only, for diagnostics). Default true.
+    pub learn_on_policy: bool,
+    /// Learn from the returns home between on-policy episodes. Default true: they are on-policy
+    /// data near the path start.
+    pub learn_returning_home: bool,
+    /// Exploration noise during the on-policy phase. Default true.
+    pub explore: bool,
+    /// Seed of the exploration and babbling noise. Default 0.
+    pub seed: u64,
+}
+
+impl Default for TrainConfig {
+    fn default() -> Self {
+        Self {
+            minutes: 30.0,
+            babble: BabbleConfig::default(),
+            gains: TaskGains::default(),
+            episode_seconds: 40.0,
+            reset_error: 0.05,
+            eval_every_minutes: 2.0,
+            learn_every: 1,
+            learn_on_policy: true,
+            learn_returning_home: true,
+            explore: true,
+            seed: 0,
+        }
+    }
+}
+
+impl TrainConfig {
+    /// Checks every field's range.
+    ///
+    /// # Errors
+    /// [`LearnError::InvalidConfig`] naming the first field out of range.
+    pub fn validate(&self) -> Result<()> {
+        let b = &self.babble;
+        let finite_pos = |x: f64| x > 0.0 && x.is_finite();
+        let finite_nonneg = |x: f64| x >= 0.0 && x.is_finite();
+        let checks = [
+            ("minutes", finite_nonneg(self.minutes)),
+            ("babble.minutes", finite_nonneg(b.minutes)),
+            ("babble.spread", b.spread.is_none_or(finite_pos)),
+            (
+                "babble.move_time",
+                b.move_time[0] > 0.0
+                    && b.move_time[0] <= b.move_time[1]
+                    && b.move_time[1].is_finite(),
+            ),
+            ("babble.gain_scale", finite_pos(b.gain_scale)),
+            ("babble.noise", finite_nonneg(b.noise)),
+            ("babble.settle", finite_nonneg(b.settle)),
+            ("episode_seconds", finite_pos(self.episode_seconds)),
+            ("reset_error", self.reset_error > 0.0),
+            ("eval_every_minutes", finite_nonneg(self.eval_every_minutes)),
+            ("learn_every", self.learn_every >= 1),
+        ];
+        match checks.iter().find(|(_, ok)| !ok) {
+            Some((what, _)) => Err(LearnError::InvalidConfig(format!(
+                "training setting {what} is out of range: {self:?}"
+            ))),
+            None => Ok(()),
+        }
+    }
+}

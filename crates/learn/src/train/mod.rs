@@ -1,0 +1,89 @@
+//! The training driver (argmin style: explicit state, a driver, an observer; `docs/learner.md`,
+//! "Training"): motor babbling under joint PD control with the learned gravity compensation, then
+//! on-policy learning while tracking the task path with exploration noise, evaluated at regular
+//! intervals.
+//!
+//! The driver talks to the robot only through [`Robot`]; evaluation is a callback supplied by the
+//! caller (who may own a simulator and its model — the driver never does).
+
+mod babble;
+mod config;
+mod observer;
+mod on_policy;
+mod trainer;
+
+pub use config::{BabbleConfig, TrainConfig};
+pub use observer::{Observer, OnEvaluation, Phase, Progress};
+pub use trainer::{Evaluate, TrainSummary, Trainer};
+
+use crate::error::Result;
+use crate::eval::EvalResult;
+use crate::learner::Learner;
+use osrl_control::Trajectory;
+use osrl_dynamics::Robot;
+
+/// Trains `learner` on `robot` (at rest at its home posture on the path start): [`Trainer::run`]
+/// with `observe` called after each evaluation.
+///
+/// # Errors
+/// As [`Trainer::new`] and [`Trainer::run`].
+pub fn train<R: Robot + ?Sized>(
+    robot: &mut R,
+    learner: &mut Learner,
+    traj: &Trajectory,
+    axes: &[usize],
+    cfg: &TrainConfig,
+    evaluate: &mut dyn FnMut(&mut Learner) -> Result<EvalResult>,
+    observe: &mut dyn FnMut(&Progress),
+) -> Result<TrainSummary> {
+    let mut observer = OnEvaluation(observe);
+    Trainer::new(robot, learner, traj, axes, cfg, evaluate, &mut observer)?.run()
+}
+
+/// [`train`] on a simulated robot, for examples and experiments: a fresh learner with `lcfg`
+/// trained on a [`SimRobot`](osrl_dynamics::SimRobot) of `truth` (default
+/// [`SimConfig`](osrl_dynamics::SimConfig), noise seeded with `cfg.seed`) starting at rest at
+/// `home`, evaluated by an [`Evaluator`](crate::eval::Evaluator) on the same model over
+/// `eval_periods` periods. The model serves the simulator and the evaluator; the learner sees
+/// only measurements.
+///
+/// # Errors
+/// As [`train`], or a `home` or `lcfg` that does not fit `truth`.
+pub fn train_simulated(
+    truth: &osrl_dynamics::Model,
+    traj: &Trajectory,
+    home: &[f64],
+    lcfg: crate::LearnerConfig,
+    cfg: &TrainConfig,
+    eval_periods: usize,
+    observe: &mut dyn FnMut(&Progress),
+) -> Result<(Learner, TrainSummary)> {
+    let sim_cfg = osrl_dynamics::SimConfig {
+        seed: cfg.seed,
+        ..Default::default()
+    };
+    let (n, dt) = (truth.nq(), sim_cfg.control_period);
+    let mut sim = osrl_dynamics::SimRobot::new(truth.clone(), sim_cfg)?;
+    sim.reset(home, &vec![0.0; n])?;
+    let mut learner = Learner::new(n, truth.task_dim(), dt, lcfg)?;
+    let mut ev = crate::eval::Evaluator::new(
+        truth.clone(),
+        Default::default(),
+        traj.clone(),
+        home.to_vec(),
+        cfg.gains,
+        eval_periods,
+    )?;
+    let axes = truth.task_axes();
+    let mut evaluate = |l: &mut Learner| ev.evaluate(l);
+    let summary = train(
+        &mut sim,
+        &mut learner,
+        traj,
+        axes,
+        cfg,
+        &mut evaluate,
+        observe,
+    )?;
+    Ok((learner, summary))
+}

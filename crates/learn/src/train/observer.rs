@@ -1,0 +1,77 @@
+//! What a training run reports while it runs: its phase and progress, to an observer (progress
+//! bars, logs and plots stay with the caller).
+
+use crate::eval::EvalResult;
+use serde::{Deserialize, Serialize};
+use std::fmt;
+
+/// The phase of a training run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Phase {
+    /// Motor babbling under joint PD control.
+    #[serde(rename = "babbling")]
+    Babbling,
+    /// Learning while tracking the task with the learned controller.
+    #[serde(rename = "on-policy")]
+    OnPolicy,
+}
+
+impl fmt::Display for Phase {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Phase::Babbling => "babbling",
+            Phase::OnPolicy => "on-policy",
+        })
+    }
+}
+
+/// What the observer sees after each evaluation and at the end of each episode.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Progress {
+    pub sim_minutes: f64,
+    pub phase: Phase,
+    pub n_local_models: usize,
+    pub n_trained: usize,
+    pub episodes: u64,
+    pub aborted_episodes: u64,
+    /// Last evaluation result, if any.
+    pub eval: Option<EvalResult>,
+    /// Largest change of the commanded torque between two consecutive on-policy steps (N·m).
+    pub max_command_step: f64,
+}
+
+impl Progress {
+    /// The progress of a run that has not started: babbling, nothing learned.
+    pub fn start() -> Self {
+        Self {
+            sim_minutes: 0.0,
+            phase: Phase::Babbling,
+            n_local_models: 0,
+            n_trained: 0,
+            episodes: 0,
+            aborted_episodes: 0,
+            eval: None,
+            max_command_step: 0.0,
+        }
+    }
+}
+
+/// Receives a training run's progress.
+pub trait Observer {
+    /// After each evaluation (`progress.eval` is the new one).
+    fn evaluated(&mut self, _progress: &Progress) {}
+    /// At the end of each on-policy episode.
+    fn episode_ended(&mut self, _progress: &Progress) {}
+}
+
+/// An observer that does nothing.
+impl Observer for () {}
+
+/// A closure as an observer of the evaluations.
+pub struct OnEvaluation<F>(pub F);
+
+impl<F: FnMut(&Progress)> Observer for OnEvaluation<F> {
+    fn evaluated(&mut self, progress: &Progress) {
+        (self.0)(progress)
+    }
+}

@@ -1,0 +1,285 @@
+//! The training driver's state (argmin style: state + driver + observer): the robot, the learner,
+//! the clock, the evaluation schedule and the run's counters. Its phases are in `babble.rs` and
+//! `on_policy.rs`; [`Trainer::run`] reads as the list of them.
+
+use super::observer::{Observer, Progress};
+use super::TrainConfig;
+use crate::error::{LearnError, Result};
+use crate::eval::EvalResult;
+use crate::learner::{Learner, LearnerStats};
+use osrl_control::Trajectory;
+use osrl_dynamics::{Measurement, Robot};
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use serde::{Deserialize, Serialize};
+use std::time::Instant;
+
+/// The outcome of a training run.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct TrainSummary {
+    pub sim_training_minutes: f64,
+    pub wall_seconds: f64,
+    /// Simulated training time over wall time (evaluations included in the wall time).
+    pub realtime_factor: f64,
+    pub episodes: u64,
+    pub aborted_episodes: u64,
+    /// `(simulated minutes, evaluation)` pairs.
+    pub learning_curve: Vec<(f64, EvalResult)>,
+    /// Largest change of the commanded torque between consecutive on-policy steps (N·m).
+    pub max_command_step: f64,
+    pub stats: LearnerStats,
+    pub n_local_models: usize,
+}
+
+/// Evaluates the learner (without exploration or learning) and returns the metrics.
+pub type Evaluate<'a> = dyn FnMut(&mut Learner) -> Result<EvalResult> + 'a;
+
+/// A training run in progress.
+pub struct Trainer<'a, R: Robot + ?Sized> {
+    pub(super) robot: &'a mut R,
+    pub(super) learner: &'a mut Learner,
+    pub(super) traj: &'a Trajectory,
+    pub(super) axes: &'a [usize],
+    pub(super) cfg: &'a TrainConfig,
+    evaluate: &'a mut Evaluate<'a>,
+    observer: &'a mut dyn Observer,
+    /// Home posture (at rest on the path start) and joint limits (rad).
+    pub(super) home: Vec<f64>,
+    pub(super) q_min: Vec<f64>,
+    pub(super) q_max: Vec<f64>,
+    /// The last measurement and the command being sent.
+    pub(super) prev: Measurement,
+    pub(super) u: Vec<f64>,
+    pub(super) rng: ChaCha8Rng,
+    /// Control period (s), control steps per simulated minute, steps done and in all.
+    pub(super) dt: f64,
+    pub(super) per_min: u64,
+    pub(super) steps: u64,
+    pub(super) total_steps: u64,
+    next_eval: u64,
+    eval_steps: u64,
+    /// Whether the transitions are learned from.
+    pub(super) learning: bool,
+    curve: Vec<(f64, EvalResult)>,
+    pub(super) progress: Progress,
+    /// Largest on-policy command step (N·m).
+    pub(super) max_step: f64,
+    wall: Instant,
+}
+
+impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
+    /// A run of `learner` on `robot` (at rest at its home posture on the path start) along
+    /// `traj`, whose world axes `axes` are the task; `evaluate` is called every
+    /// `cfg.eval_every_minutes` and at the end, `observer` sees the progress.
+    ///
+    /// # Errors
+    /// An invalid `cfg`, or a robot, learner and task axes that do not match.
+    pub fn new(
+        robot: &'a mut R,
+        learner: &'a mut Learner,
+        traj: &'a Trajectory,
+        axes: &'a [usize],
+        cfg: &'a TrainConfig,
+        evaluate: &'a mut Evaluate<'a>,
+        observer: &'a mut dyn Observer,
+    ) -> Result<Self> {
+        let wall = Instant::now();
+        cfg.validate()?;
+        let dt = robot.control_period();
+        let (n, m) = learner.dims();
+        if robot.dof() != n || robot.task_dim() != m || axes.len() != m {
+            return Err(LearnError::InvalidConfig(format!(
+                "robot ({} joints, {}-D task), learner ({n}, {m}) and task axes {axes:?} do not \
+                 match",
+                robot.dof(),
+                robot.task_dim()
+            )));
+        }
+        let prev = robot.measurement().clone();
+        let (q_min, q_max) = robot.joint_limits();
+        let (q_min, q_max) = (q_min.to_vec(), q_max.to_vec());
+        let per_min = (60.0 / dt).round() as u64;
+        let eval_steps = (cfg.eval_every_minutes * per_min as f64).round() as u64;
+        Ok(Self {
+            home: prev.q.as_slice().to_vec(),
+            prev,
+            robot,
+            learner,
+            traj,
+            axes,
+            cfg,
+            evaluate,
+            observer,
+            q_min,
+            q_max,
+            u: vec![0.0; n],
+            rng: ChaCha8Rng::seed_from_u64(cfg.seed),
+            dt,
+            per_min,
+            steps: 0,
+            total_steps: (cfg.minutes * per_min as f64).round() as u64,
+            next_eval: eval_steps,
+            eval_steps,
+            learning: true,
+            curve: Vec::new(),
+            progress: Progress::start(),
+            max_step: 0.0,
+            wall,
+        })
+    }
+
+    /// The run: babbling, on-policy learning, the final evaluation.
+    ///
+    /// # Errors
+    /// The first robot, learner or evaluation error.
+    pub fn run(mut self) -> Result<TrainSummary> {
+        self.babble()?;
+        self.on_policy()?;
+        self.final_evaluation()?;
+        Ok(self.summary())
+    }
+
+    pub(super) fn minutes(&self) -> f64 {
+        self.steps as f64 * self.dt / 60.0
+    }
+
+    pub(super) fn done(&self) -> bool {
+        self.steps >= self.total_steps
+    }
+
+    /// Applies `self.u` for one period, learns from the transition, evaluates when due.
+    pub(super) fn step(&mut self) -> Result<()> {
+        let cur = self.robot.step(&self.u)?.clone();
+        self.steps += 1;
+        if self.learning && self.steps.is_multiple_of(self.cfg.learn_every as u64) {
+            match self.learner.learn(&self.prev, &cur) {
+                Ok(()) | Err(LearnError::BadMeasurement(_)) => {}
+                Err(e) => return Err(e),
+            }
+        }
+        self.prev = cur;
+        if self.eval_steps > 0 && self.steps >= self.next_eval {
+            self.next_eval += self.eval_steps;
+            self.evaluate_now()?;
+        }
+        Ok(())
+    }
+
+    /// One evaluation, recorded on the learning curve and shown to the observer.
+    fn evaluate_now(&mut self) -> Result<()> {
+        let e = (self.evaluate)(self.learner)?;
+        self.curve.push((self.minutes(), e.clone()));
+        self.progress.sim_minutes = self.minutes();
+        self.progress.eval = Some(e);
+        self.progress.n_local_models = self.learner.n_local_models();
+        self.progress.n_trained = self.learner.n_trained();
+        self.observer.evaluated(&self.progress);
+        Ok(())
+    }
+
+    /// Shows the end of an episode to the observer.
+    pub(super) fn episode_ended(&mut self) {
+        self.progress.max_command_step = self.max_step;
+        self.observer.episode_ended(&self.progress);
+    }
+
+    /// The final evaluation, unless the schedule just made one at this very step.
+    fn final_evaluation(&mut self) -> Result<()> {
+        let now = self.minutes();
+        if self
+            .curve
+            .last()
+            .is_none_or(|(t, _)| (*t - now).abs() > 1e-12)
+        {
+            self.evaluate_now()?;
+        }
+        Ok(())
+    }
+
+    fn summary(self) -> TrainSummary {
+        let wall_seconds = self.wall.elapsed().as_secs_f64();
+        let minutes = self.minutes();
+        TrainSummary {
+            sim_training_minutes: minutes,
+            wall_seconds,
+            realtime_factor: minutes * 60.0 / wall_seconds.max(1e-9),
+            episodes: self.progress.episodes,
+            aborted_episodes: self.progress.aborted_episodes,
+            learning_curve: self.curve,
+            max_command_step: self.max_step,
+            stats: self.learner.stats(),
+            n_local_models: self.learner.n_local_models(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Trainer;
+    use crate::learner::fixture;
+    use crate::train::{BabbleConfig, Observer, Phase, Progress, TrainConfig};
+    use crate::Learner;
+    use osrl_control::TrajectoryConfig;
+    use osrl_dynamics::robots;
+
+    #[derive(Default)]
+    struct Log {
+        evaluations: Vec<(f64, Phase)>,
+        episodes: u64,
+    }
+    impl Observer for Log {
+        fn evaluated(&mut self, p: &Progress) {
+            self.evaluations.push((p.sim_minutes, p.phase));
+        }
+        fn episode_ended(&mut self, _: &Progress) {
+            self.episodes += 1;
+        }
+    }
+
+    /// The evaluations follow the schedule (and one at the end, not twice), the observer sees
+    /// both phases, and an episode whose error exceeds `reset_error` is counted as aborted.
+    #[test]
+    fn the_schedule_phases_and_aborts_are_reported() {
+        let model = robots::planar3();
+        let traj = TrajectoryConfig::default().build(&model).unwrap();
+        let mut sim = fixture::robot();
+        let mut learner = Learner::new(3, 2, 0.002, fixture::config()).unwrap();
+        let cfg = TrainConfig {
+            minutes: 0.7,
+            eval_every_minutes: 0.15,
+            // Tiny: every on-policy episode from rest aborts at once (the path starts elsewhere).
+            reset_error: 1e-9,
+            babble: BabbleConfig {
+                minutes: 0.4,
+                ..BabbleConfig::default()
+            },
+            ..TrainConfig::default()
+        };
+        let axes = model.task_axes().to_vec();
+        let mut evaluate = |_: &mut Learner| Ok(Default::default());
+        let mut log = Log::default();
+        let summary = Trainer::new(
+            &mut sim,
+            &mut learner,
+            &traj,
+            &axes,
+            &cfg,
+            &mut evaluate,
+            &mut log,
+        )
+        .unwrap()
+        .run()
+        .unwrap();
+        let minutes: Vec<f64> = log.evaluations.iter().map(|e| e.0).collect();
+        assert_eq!(minutes.len(), 5, "{minutes:?}");
+        assert!((minutes[0] - 0.15).abs() < 1e-9 && (minutes[4] - 0.7).abs() < 1e-9);
+        assert_eq!(log.evaluations[0].1, Phase::Babbling);
+        assert_eq!(log.evaluations[4].1, Phase::OnPolicy);
+        assert!(summary.episodes > 0, "{summary:?}");
+        assert_eq!(summary.aborted_episodes, summary.episodes);
+        assert_eq!(log.episodes, summary.episodes);
+        assert_eq!(summary.learning_curve.len(), 5);
+        // The learner's ĝ is frozen once on-policy learning starts.
+        assert!(learner.gravity_frozen());
+    }
+}
