@@ -1,0 +1,299 @@
+//! `osrl.Robot`: an `osrl-dynamics` model (a built-in robot or a URDF) and its workspace, with
+//! the algorithms on numpy arrays. Conventions are the crate's: world frame z up, gravity
+//! 9.81 m/s² along −z, `M(q) q̈ + h(q, q̇) = u` with `h = C q̇ + g + τ_f`; `rnea` and `aba` are
+//! rigid-body (no friction), `forward_dynamics` and `nonlinear_effects` include the friction.
+
+use crate::arrays::{out1, out2, vector};
+use crate::arrays::{Arr1, Arr2};
+use crate::errors::{dyn_err, io_err};
+use osrl_dynamics::{self as dynamics, robots, urdf, Data, Model};
+use pyo3::exceptions::PyNotImplementedError;
+use pyo3::prelude::*;
+use std::path::PathBuf;
+
+/// A robot model and its preallocated workspace (see `python/osrl/_osrl.pyi`).
+#[pyclass(name = "Robot", module = "osrl")]
+pub struct PyRobot {
+    model: Model,
+    data: Data,
+}
+
+impl PyRobot {
+    fn wrap(model: Model) -> Self {
+        let data = model.data();
+        PyRobot { model, data }
+    }
+
+    fn n(&self) -> usize {
+        self.model.nq()
+    }
+}
+
+/// `tip` is accepted for the interface of issue 29; the dynamics crate takes the URDF's
+/// deepest link as the end effector and has no option to choose another yet.
+fn refuse_tip(tip: Option<String>) -> PyResult<()> {
+    match tip {
+        None => Ok(()),
+        Some(t) => Err(PyNotImplementedError::new_err(format!(
+            "tip={t:?}: osrl-dynamics does not choose the end-effector link yet (it takes the \
+             deepest link of the chain, a fixed `ee` link after the last joint if there is \
+             one); omit tip"
+        ))),
+    }
+}
+
+/// The columns of a column-major 3×n or n×n matrix as a row-major copy.
+fn rows_of<R: nalgebra::Dim, C: nalgebra::Dim, S: nalgebra::RawStorage<f64, R, C>>(
+    m: &nalgebra::Matrix<f64, R, C, S>,
+) -> Vec<f64> {
+    let (r, c) = m.shape();
+    (0..r * c).map(|k| m[(k / c, k % c)]).collect()
+}
+
+#[pymethods]
+impl PyRobot {
+    /// A built-in robot by name (`Robot.builtins()` lists them).
+    #[staticmethod]
+    fn builtin(name: &str) -> PyResult<Self> {
+        Ok(Self::wrap(robots::by_name(name).map_err(dyn_err)?))
+    }
+
+    /// The names of the built-in robots.
+    #[staticmethod]
+    fn builtins() -> Vec<&'static str> {
+        robots::BUILTIN.to_vec()
+    }
+
+    /// A robot from a URDF file (a serial chain of revolute joints; fixed joints are folded in).
+    #[staticmethod]
+    #[pyo3(signature = (path, tip = None))]
+    fn from_urdf(path: PathBuf, tip: Option<String>) -> PyResult<Self> {
+        refuse_tip(tip)?;
+        let text = std::fs::read_to_string(&path).map_err(|e| io_err(e, Some(&path)))?;
+        let model = urdf::parse_urdf(&text).map_err(|e| {
+            pyo3::exceptions::PyValueError::new_err(format!("{}: {e}", path.display()))
+        })?;
+        Ok(Self::wrap(model))
+    }
+
+    /// A robot from URDF text.
+    #[staticmethod]
+    #[pyo3(signature = (text, tip = None))]
+    fn from_urdf_string(text: &str, tip: Option<String>) -> PyResult<Self> {
+        refuse_tip(tip)?;
+        Ok(Self::wrap(urdf::parse_urdf(text).map_err(dyn_err)?))
+    }
+
+    /// The model as URDF text (what `osrl robot --robot NAME --urdf` prints).
+    fn to_urdf(&self) -> String {
+        urdf::to_urdf(&self.model)
+    }
+
+    #[getter]
+    fn name(&self) -> &str {
+        self.model.name()
+    }
+
+    /// Number of joints `n`.
+    #[getter]
+    fn dof(&self) -> usize {
+        self.n()
+    }
+
+    /// Task-space dimension `m` (the world axes in `task_axes`).
+    #[getter]
+    fn task_dim(&self) -> usize {
+        self.model.task_dim()
+    }
+
+    /// World axes (0 = x, 1 = y, 2 = z) of the end-effector position that form the task space.
+    #[getter]
+    fn task_axes(&self) -> Vec<usize> {
+        self.model.task_axes().to_vec()
+    }
+
+    #[getter]
+    fn joint_names(&self) -> Vec<String> {
+        self.model
+            .links()
+            .iter()
+            .map(|l| l.joint_name.clone())
+            .collect()
+    }
+
+    /// Lower joint limits (rad; −inf: none).
+    #[getter]
+    fn q_min<'py>(&self, py: Python<'py>) -> Arr1<'py> {
+        out1(py, &self.model.q_min().collect::<Vec<_>>())
+    }
+
+    /// Upper joint limits (rad; inf: none).
+    #[getter]
+    fn q_max<'py>(&self, py: Python<'py>) -> Arr1<'py> {
+        out1(py, &self.model.q_max().collect::<Vec<_>>())
+    }
+
+    /// Torque limits (N·m; inf: none).
+    #[getter]
+    fn tau_max<'py>(&self, py: Python<'py>) -> Arr1<'py> {
+        out1(py, &self.model.tau_max().collect::<Vec<_>>())
+    }
+
+    /// Default start posture (rad).
+    #[getter]
+    fn q_start<'py>(&self, py: Python<'py>) -> Arr1<'py> {
+        out1(py, &self.model.spec().q_start)
+    }
+
+    /// Rest posture of the nominal null-space behaviour (rad).
+    #[getter]
+    fn q_rest<'py>(&self, py: Python<'py>) -> Arr1<'py> {
+        out1(py, &self.model.spec().q_rest)
+    }
+
+    /// Total mass (kg).
+    #[getter]
+    fn total_mass(&self) -> f64 {
+        self.model.total_mass()
+    }
+
+    /// End-effector position in the world (m), shape `(3,)`.
+    fn fk<'py>(&mut self, py: Python<'py>, q: &Bound<'py, PyAny>) -> PyResult<Arr1<'py>> {
+        let q = vector("q", q)?;
+        dynamics::forward_kinematics(&self.model, &mut self.data, q.as_slice()).map_err(dyn_err)?;
+        Ok(out1(py, self.data.ee_pos.as_slice()))
+    }
+
+    /// `(x, xd, jdot_qd)`: end-effector position (m), velocity `J q̇` (m/s) and bias
+    /// acceleration `J̇ q̇` (m/s²) in the world, each of shape `(3,)`.
+    fn kinematics<'py>(
+        &mut self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+        qd: &Bound<'py, PyAny>,
+    ) -> PyResult<(Arr1<'py>, Arr1<'py>, Arr1<'py>)> {
+        let (q, qd) = (vector("q", q)?, vector("qd", qd)?);
+        dynamics::kinematics(&self.model, &mut self.data, q.as_slice(), qd.as_slice())
+            .map_err(dyn_err)?;
+        let d = &self.data;
+        Ok((
+            out1(py, d.ee_pos.as_slice()),
+            out1(py, d.ee_vel.as_slice()),
+            out1(py, d.jdot_qd.as_slice()),
+        ))
+    }
+
+    /// End-effector point Jacobian `∂x/∂q` in the world, shape `(3, n)`.
+    fn jacobian<'py>(&mut self, py: Python<'py>, q: &Bound<'py, PyAny>) -> PyResult<Arr2<'py>> {
+        let q = vector("q", q)?;
+        dynamics::jacobian(&self.model, &mut self.data, q.as_slice()).map_err(dyn_err)?;
+        Ok(out2(py, 3, self.n(), rows_of(&self.data.jac)))
+    }
+
+    /// Joint-space mass matrix `M(q)` (kg·m²), shape `(n, n)` (CRBA).
+    fn mass_matrix<'py>(&mut self, py: Python<'py>, q: &Bound<'py, PyAny>) -> PyResult<Arr2<'py>> {
+        let q = vector("q", q)?;
+        let n = self.n();
+        let m = dynamics::crba(&self.model, &mut self.data, q.as_slice()).map_err(dyn_err)?;
+        Ok(out2(py, n, n, rows_of(m)))
+    }
+
+    /// Gravity torques `g(q)` (N·m).
+    fn gravity<'py>(&mut self, py: Python<'py>, q: &Bound<'py, PyAny>) -> PyResult<Arr1<'py>> {
+        let q = vector("q", q)?;
+        let g = dynamics::gravity(&self.model, &mut self.data, q.as_slice()).map_err(dyn_err)?;
+        Ok(out1(py, g.as_slice()))
+    }
+
+    /// Non-inertial torques `h(q, q̇) = C q̇ + g + τ_f` (N·m), friction included.
+    fn nonlinear_effects<'py>(
+        &mut self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+        qd: &Bound<'py, PyAny>,
+    ) -> PyResult<Arr1<'py>> {
+        let (q, qd) = (vector("q", q)?, vector("qd", qd)?);
+        let h =
+            dynamics::nonlinear_effects(&self.model, &mut self.data, q.as_slice(), qd.as_slice())
+                .map_err(dyn_err)?;
+        Ok(out1(py, h.as_slice()))
+    }
+
+    /// Joint friction torques `τ_f(q̇)` (N·m).
+    fn friction<'py>(&self, py: Python<'py>, qd: &Bound<'py, PyAny>) -> PyResult<Arr1<'py>> {
+        let qd = vector("qd", qd)?;
+        dynamics::check_vec("qd", qd.as_slice(), self.n()).map_err(dyn_err)?;
+        let mut f = vec![0.0; self.n()];
+        self.model.friction(qd.as_slice(), &mut f);
+        Ok(out1(py, &f))
+    }
+
+    /// Inverse dynamics `τ = M q̈ + C q̇ + g` (N·m; rigid body, no friction).
+    fn rnea<'py>(
+        &mut self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+        qd: &Bound<'py, PyAny>,
+        qdd: &Bound<'py, PyAny>,
+    ) -> PyResult<Arr1<'py>> {
+        let (q, qd, qdd) = (vector("q", q)?, vector("qd", qd)?, vector("qdd", qdd)?);
+        let tau = dynamics::rnea(
+            &self.model,
+            &mut self.data,
+            q.as_slice(),
+            qd.as_slice(),
+            qdd.as_slice(),
+        )
+        .map_err(dyn_err)?;
+        Ok(out1(py, tau.as_slice()))
+    }
+
+    /// Forward dynamics `q̈ = M⁻¹(τ − C q̇ − g)` (rad/s²; rigid body, no friction), by ABA.
+    fn aba<'py>(
+        &mut self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+        qd: &Bound<'py, PyAny>,
+        tau: &Bound<'py, PyAny>,
+    ) -> PyResult<Arr1<'py>> {
+        let (q, qd, tau) = (vector("q", q)?, vector("qd", qd)?, vector("tau", tau)?);
+        let qdd = dynamics::aba(
+            &self.model,
+            &mut self.data,
+            q.as_slice(),
+            qd.as_slice(),
+            tau.as_slice(),
+        )
+        .map_err(dyn_err)?;
+        Ok(out1(py, qdd.as_slice()))
+    }
+
+    /// Forward dynamics of the robot with friction, `q̈ = M⁻¹(u − h(q, q̇))` (rad/s²).
+    fn forward_dynamics<'py>(
+        &mut self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+        qd: &Bound<'py, PyAny>,
+        u: &Bound<'py, PyAny>,
+    ) -> PyResult<Arr1<'py>> {
+        let (q, qd, u) = (vector("q", q)?, vector("qd", qd)?, vector("u", u)?);
+        let qdd = dynamics::forward_dynamics(
+            &self.model,
+            &mut self.data,
+            q.as_slice(),
+            qd.as_slice(),
+            u.as_slice(),
+        )
+        .map_err(dyn_err)?;
+        Ok(out1(py, qdd.as_slice()))
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "osrl.Robot({:?}, dof={}, task_axes={:?})",
+            self.model.name(),
+            self.n(),
+            self.model.task_axes()
+        )
+    }
+}

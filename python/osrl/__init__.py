@@ -1,0 +1,23 @@
+"""osrl from Python: LWPR and robot dynamics on numpy arrays, and a MuJoCo adapter.
+
+- ``osrl.Lwpr``: incremental Locally Weighted Projection Regression (the Rust crate ``lwpr``);
+- ``osrl.Robot``: rigid-body dynamics of a built-in robot or a URDF (the crate ``osrl-dynamics``);
+- ``osrl.Measurement`` and ``osrl.RobotProtocol``: what a robot gives a learner (ROBOT_PROTOCOL.md);
+- ``osrl.mujoco``: a MuJoCo model as such a robot, and the MuJoCo model of a built-in robot
+  (imported on use: it needs the ``mujoco`` package).
+
+See python/README.md.
+"""
+
+from ._osrl import MAX_NORMALISED, Lwpr, NoSupportError, Robot, __version__
+from .protocol import Measurement, RobotProtocol
+
+__all__ = [
+    "Lwpr",
+    "MAX_NORMALISED",
+    "Measurement",
+    "NoSupportError",
+    "Robot",
+    "RobotProtocol",
+    "__version__",
+]

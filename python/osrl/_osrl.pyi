@@ -1,0 +1,166 @@
+"""Type stubs of the native module ``osrl._osrl`` (crates/py). Import from ``osrl``.
+
+Array arguments are float64 numpy arrays of the documented shape (any strides) or lists of
+numbers; another dtype, shape or a non-finite value raises ``ValueError`` and changes nothing.
+Results are new float64 arrays.
+"""
+
+from os import PathLike
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+ArrayLike1 = Union[npt.NDArray[np.float64], Sequence[float]]
+ArrayLike2 = Union[npt.NDArray[np.float64], Sequence[Sequence[float]]]
+Array = npt.NDArray[np.float64]
+Path = Union[str, "PathLike[str]"]
+
+__version__: str
+MAX_NORMALISED: float
+"""Largest magnitude of a normalised input or output that ``Lwpr.update`` accepts (1e40)."""
+
+class NoSupportError(ValueError):
+    """No trustworthy receptive field is active at this input (for some output)."""
+
+class Lwpr:
+    """An incremental LWPR model mapping ``n_in`` inputs to ``n_out`` outputs (the Rust crate
+    ``lwpr``: the reference library's algorithm, plus shared receptive fields and kernels on a
+    subset of the inputs).
+
+    Keyword arguments are the crate's config keys (``lwpr::LwprConfig``; defaults are the
+    reference library's): ``init_d`` (number, list for a diagonal, or list of rows),
+    ``init_alpha``, ``diag_only``, ``update_d``, ``meta``, ``meta_rate``, ``penalty``,
+    ``w_gen``, ``w_prune``, ``prune_rule`` ("wider" | "narrower"), ``init_lambda``,
+    ``final_lambda``, ``tau_lambda``, ``init_s2``, ``add_threshold``, ``kernel``
+    ("gaussian" | "bisquare"), ``norm_in``, ``norm_out`` (number or one per dimension; "std"
+    must be resolved by the caller, e.g. ``norm_in=X.std(axis=0)``), ``cutoff``,
+    ``shared_rfs``, ``kernel_dims``, ``regression_dims``. An unknown key raises ``TypeError``,
+    a bad value ``ValueError``.
+
+    Single-sample calls hold the GIL (about a microsecond each); batches, ``save`` and
+    ``load`` release it. Not for concurrent use from several threads (a second call while one
+    runs raises ``RuntimeError``).
+    """
+
+    def __init__(self, n_in: int, n_out: int, **config: Any) -> None: ...
+    def update(self, x: ArrayLike1, y: ArrayLike1) -> Array:
+        """Learns from one sample (``x``: ``(n_in,)``, ``y``: ``(n_out,)``); returns the
+        prediction made before learning from it, ``(n_out,)`` (NaN for an output where no
+        trustworthy receptive field was updated). Raises ``ValueError`` (nothing learned) on a
+        bad shape or dtype, a non-finite value, or a value beyond ``MAX_NORMALISED`` once
+        divided by its normalisation."""
+    def update_batch(self, X: ArrayLike2, Y: ArrayLike2) -> Array:
+        """Learns from the rows of ``X`` ``(N, n_in)`` and ``Y`` ``(N, n_out)`` (a 1-D ``Y``
+        when ``n_out == 1``) in order, the same as ``update`` row by row; returns the
+        predictions before learning, ``(N, n_out)``. The whole batch is checked first: an
+        error learns nothing."""
+    def predict(self, x: ArrayLike1, *, strict: bool = True) -> Array:
+        """The prediction at ``x``, ``(n_out,)``. Raises ``NoSupportError`` where no
+        trustworthy receptive field is active, unless ``strict=False`` (then 0 for that
+        output, as the reference library does)."""
+    def predict_batch(self, X: ArrayLike2, *, strict: bool = True) -> Array:
+        """``predict`` of every row of ``X`` ``(N, n_in)``: ``(N, n_out)``."""
+    def predict_conf(self, x: ArrayLike1) -> Tuple[Array, Array]:
+        """``(y, conf)``: the prediction and its confidence bound per output (output units,
+        the reference library's ``sqrt(Σ w σ²_k + Σ w (ŷ_k − ŷ)²) / Σ w``)."""
+    def jacobian(self, x: ArrayLike1) -> Array:
+        """The Jacobian ``∂ŷ/∂x`` at ``x``, ``(n_out, n_in)``."""
+    @property
+    def n_rfs(self) -> List[int]:
+        """Receptive fields per sub-model (one per output, or one when ``shared_rfs``)."""
+    @property
+    def n_in(self) -> int: ...
+    @property
+    def n_out(self) -> int: ...
+    @property
+    def n_updates(self) -> int: ...
+    @property
+    def config(self) -> Dict[str, Any]:
+        """Every config key with its value (``Lwpr(n_in, n_out, **m.config)`` is the same
+        config)."""
+    @property
+    def warnings(self) -> Dict[str, int]:
+        """How often the update's numerical guards stepped in: ``metric_skipped``,
+        ``removed_non_finite``."""
+    def save(self, path: Path) -> None:
+        """Writes the model (bit-exact; the format of ``osrl lwpr fit --save``) through a new
+        file renamed into place. Refuses to replace a folder, a link or a device
+        (``OSError``)."""
+    @staticmethod
+    def load(path: Path) -> "Lwpr":
+        """Reads a saved model; ``ValueError`` for a corrupted or truncated file, ``OSError``
+        (``FileNotFoundError``, ...) for the file system."""
+    def to_bytes(self) -> bytes:
+        """The model in the file format of ``save``."""
+    @staticmethod
+    def from_bytes(data: bytes) -> "Lwpr": ...
+
+class Robot:
+    """A serial robot arm of revolute joints (the Rust crate ``osrl-dynamics``): a built-in
+    robot or a URDF, with its dynamics on numpy arrays. World frame z up, gravity 9.81 m/s²
+    along −z; ``M(q) q̈ + h(q, q̇) = u`` with ``h = C q̇ + g + τ_f``. The end effector is the
+    task point; ``task_axes`` are the world axes of its position that form the task space.
+    """
+
+    @staticmethod
+    def builtin(name: str) -> "Robot":
+        """A built-in robot (``Robot.builtins()``: planar3, sarcos7); ``ValueError`` for
+        another name."""
+    @staticmethod
+    def builtins() -> List[str]: ...
+    @staticmethod
+    def from_urdf(path: Path, tip: Optional[str] = None) -> "Robot":
+        """A robot from a URDF file (revolute and continuous joints; fixed joints folded in;
+        the deepest link's origin is the end effector). ``tip`` (choosing the end-effector
+        link) is not supported yet: ``NotImplementedError`` unless ``None``."""
+    @staticmethod
+    def from_urdf_string(text: str, tip: Optional[str] = None) -> "Robot": ...
+    def to_urdf(self) -> str:
+        """The model as URDF (what ``osrl robot --robot NAME --urdf`` prints)."""
+    @property
+    def name(self) -> str: ...
+    @property
+    def dof(self) -> int:
+        """Number of joints ``n``."""
+    @property
+    def task_dim(self) -> int: ...
+    @property
+    def task_axes(self) -> List[int]: ...
+    @property
+    def joint_names(self) -> List[str]: ...
+    @property
+    def q_min(self) -> Array:
+        """Lower joint limits (rad; −inf: none)."""
+    @property
+    def q_max(self) -> Array: ...
+    @property
+    def tau_max(self) -> Array:
+        """Torque limits (N·m; inf: none)."""
+    @property
+    def q_start(self) -> Array: ...
+    @property
+    def q_rest(self) -> Array: ...
+    @property
+    def total_mass(self) -> float: ...
+    def fk(self, q: ArrayLike1) -> Array:
+        """End-effector position in the world (m), ``(3,)``."""
+    def kinematics(self, q: ArrayLike1, qd: ArrayLike1) -> Tuple[Array, Array, Array]:
+        """``(x, xd, jdot_qd)``: end-effector position, velocity ``J q̇`` and ``J̇ q̇``, each
+        ``(3,)``."""
+    def jacobian(self, q: ArrayLike1) -> Array:
+        """End-effector point Jacobian ``∂x/∂q``, ``(3, n)``."""
+    def mass_matrix(self, q: ArrayLike1) -> Array:
+        """``M(q)`` (kg·m²), ``(n, n)``."""
+    def gravity(self, q: ArrayLike1) -> Array:
+        """``g(q)`` (N·m), ``(n,)``."""
+    def nonlinear_effects(self, q: ArrayLike1, qd: ArrayLike1) -> Array:
+        """``h(q, q̇) = C q̇ + g + τ_f`` (N·m), friction included."""
+    def friction(self, qd: ArrayLike1) -> Array:
+        """``τ_f(q̇)`` (N·m)."""
+    def rnea(self, q: ArrayLike1, qd: ArrayLike1, qdd: ArrayLike1) -> Array:
+        """Inverse dynamics ``M q̈ + C q̇ + g`` (N·m; rigid body, no friction)."""
+    def aba(self, q: ArrayLike1, qd: ArrayLike1, tau: ArrayLike1) -> Array:
+        """Forward dynamics ``M⁻¹(τ − C q̇ − g)`` (rad/s²; rigid body, no friction)."""
+    def forward_dynamics(self, q: ArrayLike1, qd: ArrayLike1, u: ArrayLike1) -> Array:
+        """Forward dynamics with friction, ``M⁻¹(u − h)`` (rad/s²)."""
