@@ -85,12 +85,7 @@ impl Local {
         }))
     }
 
-    /// Whether the controller acts (its last M-step's effective sample size reached `ess`).
-    pub fn trained(&self, ess: f64) -> bool {
-        self.ess >= ess
-    }
-
-    /// Whether the controller is below `ess` (not in the blend).
+    /// Whether the controller's effective sample size is below `ess`.
     pub fn untrained(&self, ess: f64) -> bool {
         self.ess < ess
     }
@@ -103,38 +98,25 @@ pub struct LocalControllers {
 }
 
 impl LocalControllers {
-    /// A controller for a new receptive field at `center`, created at sample `now`: `β` copied
-    /// from `source` if given and trained, else from the trained controller with the nearest
-    /// centre, else the constant command `u_init` (zero when empty).
+    /// A controller for a new receptive field at `center`, created at sample `now`, starting
+    /// from `init` (`β` and `σ`, e.g. its trained neighbours' blend at its centre) or, without
+    /// one, from the constant command `u_init` (zero when empty) and `σ0`.
     pub(crate) fn add(
         &mut self,
         id: RfId,
         center: Vec<f64>,
-        source: Option<RfId>,
+        init: Option<(DMatrix<f64>, f64)>,
         u_init: &[f64],
         spec: &LocalSpec,
         now: u64,
     ) -> Result<()> {
-        let trained = |l: &&Local| l.trained(spec.trained_ess);
-        let from = source
-            .and_then(|s| self.map.get(&s))
-            .filter(trained)
-            .or_else(|| {
-                self.map
-                    .values()
-                    .filter(trained)
-                    .min_by(|a, b| dist2(&a.center, &center).total_cmp(&dist2(&b.center, &center)))
-            });
-        let (theta, sigma) = match from {
-            Some(l) => (l.rwr.theta().clone(), l.rwr.sigma()),
-            None => {
-                let mut theta = DMatrix::zeros(spec.p, spec.n);
-                for (j, u) in u_init.iter().enumerate() {
-                    theta[(spec.p - 1, j)] = *u;
-                }
-                (theta, spec.rwr.sigma_init)
+        let (theta, sigma) = init.unwrap_or_else(|| {
+            let mut theta = DMatrix::zeros(spec.p, spec.n);
+            for (j, u) in u_init.iter().enumerate() {
+                theta[(spec.p - 1, j)] = *u;
             }
-        };
+            (theta, spec.rwr.sigma_init)
+        });
         let cfg = RwrConfig {
             sigma_init: sigma.max(spec.rwr.sigma_min).max(f64::MIN_POSITIVE),
             ..spec.rwr.clone()
@@ -157,6 +139,48 @@ impl LocalControllers {
         Ok(())
     }
 
+    /// The blend of the trained controllers active at `center` (activations `acts` there, each
+    /// weighted by its confidence) as one controller centred at `center`: each `β_j` with its
+    /// constant moved so that it gives the same command at every `q` (`position` features at
+    /// rows `q_rows`), and their blended `σ`. `None` if no trained controller is active.
+    pub(crate) fn neighbour_blend(
+        &self,
+        acts: &[lwpr::Activation],
+        center: &[f64],
+        q_rows: Option<std::ops::Range<usize>>,
+        trained_ess: f64,
+    ) -> Option<(DMatrix<f64>, f64)> {
+        let mut out: Option<(DMatrix<f64>, f64)> = None;
+        let mut sum_w = 0.0;
+        for a in acts {
+            let Some(l) = self.map.get(&a.id) else {
+                continue;
+            };
+            let w = crate::learner::confidence(l.ess, trained_ess) * a.w;
+            if !(w > 0.0) {
+                continue;
+            }
+            let mut beta = l.rwr.theta().clone();
+            if let Some(rows) = q_rows.clone() {
+                let last = beta.nrows() - 1;
+                for k in 0..beta.ncols() {
+                    let shift: f64 = rows
+                        .clone()
+                        .enumerate()
+                        .map(|(i, r)| beta[(r, k)] * (center[i] - l.center[i]))
+                        .sum();
+                    beta[(last, k)] += shift;
+                }
+            }
+            let (acc, sigma) =
+                out.get_or_insert_with(|| (DMatrix::zeros(beta.nrows(), beta.ncols()), 0.0));
+            *acc += w * beta;
+            *sigma += w * l.rwr.sigma();
+            sum_w += w;
+        }
+        out.map(|(b, s)| (b / sum_w, s / sum_w))
+    }
+
     pub fn remove(&mut self, id: RfId) {
         self.map.remove(&id);
     }
@@ -167,7 +191,7 @@ impl LocalControllers {
         out.extend(
             self.map
                 .iter()
-                .filter(|(_, l)| l.untrained(trained_ess) && l.last_active < before)
+                .filter(|(_, l)| l.untrained(trained_ess / 2.0) && l.last_active < before)
                 .map(|(id, _)| *id),
         );
     }
@@ -176,9 +200,13 @@ impl LocalControllers {
         self.map.len()
     }
 
-    /// How many controllers are trained (effective sample size ≥ `trained_ess`).
+    /// How many controllers have any confidence (effective sample size above half of
+    /// `trained_ess`).
     pub fn n_trained(&self, trained_ess: f64) -> usize {
-        self.map.values().filter(|l| l.trained(trained_ess)).count()
+        self.map
+            .values()
+            .filter(|l| crate::learner::confidence(l.ess, trained_ess) > 0.0)
+            .count()
     }
 
     /// Summaries of every local controller, by id.
@@ -210,10 +238,6 @@ fn dynamics_config(cfg: RwrConfig, spec: &LocalSpec) -> RwrConfig {
         forgetting: spec.dynamics_forgetting,
         ..cfg
     }
-}
-
-fn dist2(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum()
 }
 
 /// A summary of one local controller, for diagnostics and reports.

@@ -21,6 +21,13 @@ pub struct StepInfo {
     pub ess: f64,
     /// Weighted mean cost `Σ w r / Σ w` (so eq. 28 is its inverse).
     pub mean_cost: f64,
+    /// Factor by which the trust region shrank the step of `θ` (1: not shrunk; online form).
+    #[serde(default = "one")]
+    pub shrink: f64,
+}
+
+fn one() -> f64 {
+    1.0
 }
 
 /// Reward-weighted regression on batches of samples (Algorithm 2): each [`BatchRwr::em_step`]
@@ -157,6 +164,7 @@ impl BatchRwr {
             sigma,
             ess,
             mean_cost,
+            shrink: 1.0,
         };
         self.policy.set(&self.solver.theta, sigma);
         self.tau = tau_next;

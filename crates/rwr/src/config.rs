@@ -39,6 +39,12 @@ pub struct RwrConfig {
     /// (a proximal M-step), so directions the recent samples do not excite keep what was learned
     /// before. Default false (plain ridge).
     pub ridge_to_previous: bool,
+    /// Online form only: trust region of an M-step (action units): the new mean action may
+    /// differ from the old one by at most this much in weighted RMS (Euclidean norm over the
+    /// actions) over the step's samples; a larger step is shrunk towards the old `θ`. `None` =
+    /// no limit. Default `None` (faithful).
+    #[serde(default)]
+    pub trust_region: Option<f64>,
     /// Forgetting factor `λ_f` of the online form, in (0, 1]: before each new sample, the
     /// sufficient statistics are multiplied by it (1 = remember everything; effective memory
     /// about `1/(1−λ_f)` samples). Ignored by the batch form. Default 1.0.
@@ -57,6 +63,7 @@ impl Default for RwrConfig {
             sigma_min: 1e-6,
             ridge: 1e-9,
             ridge_to_previous: false,
+            trust_region: None,
             forgetting: 1.0,
         }
     }
@@ -98,6 +105,11 @@ impl RwrConfig {
         check(l.is_finite() && l >= 0.0, || {
             format!("ridge must be finite and >= 0, got {l}")
         })?;
+        if let Some(d) = self.trust_region {
+            check(d.is_finite() && d > 0.0, || {
+                format!("trust_region must be finite and > 0, got {d}")
+            })?;
+        }
         let f = self.forgetting;
         check(f > 0.0 && f <= 1.0, || {
             format!("forgetting must be in (0, 1], got {f}")

@@ -59,6 +59,7 @@ mod online;
 mod policy;
 mod stats;
 pub mod toy;
+mod trust;
 pub mod weights;
 
 pub use batch::{BatchRwr, StepInfo};

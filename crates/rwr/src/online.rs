@@ -136,6 +136,16 @@ impl OnlineRwr {
         let msr = self
             .solver
             .solve_with_prior(&self.stats, self.cfg.ridge, prior)?;
+        let shrink = match self.cfg.trust_region {
+            Some(delta) => crate::trust::shrink(
+                &self.stats.gram,
+                self.stats.sw,
+                self.policy.theta(),
+                &mut self.solver.theta,
+                delta,
+            ),
+            None => 1.0,
+        };
         let sigma = self.cfg.next_sigma(self.policy.sigma(), msr);
         let (ess, mean_cost) = (self.stats.ess(), self.stats.mean_cost());
         let tau_next = self.cfg.next_tau(self.tau, mean_cost, ess);
@@ -145,6 +155,7 @@ impl OnlineRwr {
             sigma,
             ess,
             mean_cost,
+            shrink,
         };
         self.policy.set(&self.solver.theta, sigma);
         self.tau = tau_next;

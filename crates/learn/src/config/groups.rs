@@ -45,6 +45,10 @@ pub struct GravityConfig {
     /// model only. Default `Some(StaticGate::default())`: along a path the dynamic model cannot
     /// separate gravity from inertia.
     pub static_gate: Option<StaticGate>,
+    /// The static model keeps learning on-policy (from the still samples of the stops; the
+    /// dynamic model is frozen there). Default true: at rest `u = g(q)` whatever the
+    /// controller, so these samples are exact along the path.
+    pub static_on_policy: bool,
 }
 
 /// The partition: the forward model `ẍ = f(q, q̇, u)` (eqs. 32–33) whose receptive fields carry
@@ -81,10 +85,12 @@ pub struct PartitionConfig {
 pub struct ControllerConfig {
     /// Reward-weighted regression of each local controller (own `τ_i`, `σ_i`). Default `τ0`
     /// 0.1, `σ0` 0.5 N·m, `σ_min` 0.05, forgetting 1 (hindsight targets are stationary), ridge
-    /// 1e-4, `min_ess` 10 (the M-step's own floor on the weights' effective sample size).
+    /// 1e-4, `min_ess` 10 (the M-step's own floor on the weights' effective sample size),
+    /// trust region 0.05 N·m (one M-step moves a controller's commands by at most that, RMS).
     pub rwr: RwrConfig,
-    /// A local controller joins the blend once the effective sample size of its last M-step
-    /// reaches this (samples). Default 50: a controller fitted on fewer samples extrapolates.
+    /// Effective sample size of a local controller's last M-step at which it counts as trained
+    /// (samples): its confidence in the blend ramps from 0 at half of this to 1 at 1.5 times
+    /// it. Default 50: a controller fitted on fewer samples extrapolates.
     pub trained_ess: f64,
     /// M-step of a local controller after this many new samples (≥ 1). Default 25: often enough
     /// to follow the policy, rarely enough to be cheap.
@@ -94,6 +100,11 @@ pub struct ControllerConfig {
     pub reward_weighting: bool,
     /// Cost of the reward weighting. Default `null_space` (see [`CostKind`]).
     pub cost: CostKind,
+    /// Support `w0` at which the learned part of the command is fully trusted (activation
+    /// units): the command is `u0 + κ Σ c_i w̃_i (u^i − u0) / S` with `S = Σ c_i w̃_i` and
+    /// `κ = smoothstep(S / w0)`, so the learned part fades into `u0` where no trained field is
+    /// near instead of switching. Default 0.05: one field at its own cutoff scale.
+    pub prior_weight: f64,
     /// Hindsight shrinkage `κ ∈ [0, 1]`: a sample's target `u − u0` loses the share `κ` of its
     /// part in the null space of `Â` — the same `ẍ` at a lower cost. 0 is the paper's plain
     /// relabelling. Default 1.
@@ -122,6 +133,11 @@ pub struct ExplorationConfig {
     /// Scale of the noise relative to the blended `σ` of the local controllers (≥ 0). Default 1:
     /// RWR's own `σ` (eq. 24).
     pub scale: f64,
+    /// Correlation time of the noise (s): an Ornstein–Uhlenbeck process per joint, so the noise
+    /// adds a bounded torque rate instead of a new draw every control period. 0: white noise.
+    /// Default 0.1: about ten times smoother than white noise at 500 Hz, still many
+    /// independent draws per second.
+    pub correlation_time: f64,
     /// Cap per joint, as a share of the standard deviation of that joint's torques during the
     /// warm-up (≥ 0). Default 0.15: light distal joints are not shaken by the noise that suits
     /// heavy proximal ones.
@@ -138,6 +154,10 @@ pub struct GuardConfig {
     ///
     /// [`LearnerConfig::for_robot`]: super::LearnerConfig::for_robot
     pub torque_limits: Vec<f64>,
+    /// Largest change of a joint's command per second (N·m/s): every command is moved towards
+    /// its value by at most `limit · dt` from the previous one (counted). Default 1000: the rate
+    /// at which a Franka arm's controller stops the robot.
+    pub torque_rate_limit: f64,
     /// Measurements with `|ẍ|` above this (m/s²) are rejected as absurd (counted). Default 1000:
     /// far above any arm's task acceleration, so only sensor faults trip it.
     pub max_abs_acceleration: f64,
@@ -183,6 +203,7 @@ impl Default for GravityConfig {
                 ..LwprConfig::default()
             },
             static_gate: Some(StaticGate::default()),
+            static_on_policy: true,
         }
     }
 }
@@ -215,10 +236,12 @@ impl Default for ControllerConfig {
                 forgetting: 1.0,
                 ridge: 1e-4,
                 min_ess: 10.0,
+                trust_region: Some(0.05),
                 ..RwrConfig::default()
             },
             trained_ess: 50.0,
             update_every: 25,
+            prior_weight: 0.05,
             reward_weighting: true,
             cost: CostKind::NullSpace,
             null_space_shrink: 1.0,
@@ -240,6 +263,7 @@ impl Default for ExplorationConfig {
     fn default() -> Self {
         Self {
             scale: 1.0,
+            correlation_time: 0.1,
             cap: 0.15,
         }
     }
@@ -249,6 +273,7 @@ impl Default for GuardConfig {
     fn default() -> Self {
         Self {
             torque_limits: Vec::new(),
+            torque_rate_limit: 1000.0,
             max_abs_acceleration: 1000.0,
             max_abs_velocity: 100.0,
             warmup_samples: 1000,

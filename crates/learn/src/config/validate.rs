@@ -94,7 +94,19 @@ impl LearnerConfig {
                 c.null_space_shrink
             )
         })?;
+        ensure(c.prior_weight > 0.0 && c.prior_weight.is_finite(), || {
+            format!(
+                "controllers.prior_weight {} must be finite and > 0",
+                c.prior_weight
+            )
+        })?;
         let e = &self.exploration;
+        ensure(finite_at_least(e.correlation_time, 0.0), || {
+            format!(
+                "exploration.correlation_time {} must be finite and ≥ 0 (s)",
+                e.correlation_time
+            )
+        })?;
         ensure(finite_at_least(e.scale, 0.0), || {
             format!("exploration.scale {} must be finite and ≥ 0", e.scale)
         })?;
@@ -122,6 +134,12 @@ impl LearnerConfig {
                 )
             },
         )?;
+        ensure(g.torque_rate_limit > 0.0, || {
+            format!(
+                "guards.torque_rate_limit {} must be > 0 (N·m/s)",
+                g.torque_rate_limit
+            )
+        })?;
         ensure(g.warmup_samples >= 10, || {
             "guards.warmup_samples must be ≥ 10".into()
         })?;

@@ -148,6 +148,10 @@ impl Evaluator {
     /// # Errors
     /// A learner or model failure; a diverged run is a result (`diverged`), not an error.
     pub fn evaluate(&mut self, learner: &mut Learner) -> Result<EvalResult> {
+        // A copy: the evaluation neither learns nor leaves traces in the learner's counters or
+        // its command memory (the training episode it interrupts goes on as it was).
+        let learner = &mut learner.clone();
+        learner.start_episode(None);
         let (n, m) = learner.dims();
         self.sim.reset(&self.home, &vec![0.0; n])?;
         let axes = self.sim.model().task_axes().to_vec();

@@ -20,20 +20,28 @@ pub enum CommandSource {
     Fallback,
 }
 
-/// Activation cutoff of the extrapolating blend.
-pub const EXTRAPOLATION_CUTOFF: f64 = 1e-12;
+/// Activation cutoff of the neighbour search (initialising a new field from the blend of its
+/// trained neighbours).
+pub const EXTRAPOLATION_CUTOFF: f64 = 1e-4;
 
-/// A blend's weights: `Σ w_i` and `Σ w_i σ_i` of the controllers in it.
+/// A blend's weights: `S = Σ c_i w_i` and `Σ c_i w_i σ_i` of the controllers in it.
 struct Blend {
     sum_w: f64,
     sum_sigma: f64,
     source: CommandSource,
 }
 
+/// Confidence `c ∈ [0, 1]` of a controller whose last M-step had effective sample size `ess`:
+/// 0 up to half of `trained_ess`, 1 from 1.5 times it, linear in between.
+pub(crate) fn confidence(ess: f64, trained_ess: f64) -> f64 {
+    (ess / trained_ess - 0.5).clamp(0.0, 1.0)
+}
+
 impl Learner {
     /// The learned command for the reference acceleration `xdd_ref` at `(q, q̇)` into `u`: the
-    /// blend (eq. 34), with exploration noise when `rng` is given, clipped to the torque limits.
-    /// Stages: check → blend → nominal → explore → guard → clip. Does not allocate.
+    /// confidence blend (eq. 34), with exploration noise when `rng` is given, within the torque
+    /// and torque-rate limits. Stages: check → blend → nominal → explore → guard → clip → rate.
+    /// Does not allocate.
     ///
     /// # Errors
     /// [`LearnError::Dimension`] on wrong slice lengths (nothing counted); a model failure; or
@@ -54,6 +62,9 @@ impl Learner {
         };
         let source = self.guard_non_finite(q, qd, source, u)?;
         self.clip(u);
+        if self.rate.apply(u) {
+            self.stats.rate_limited += 1;
+        }
         Ok(source)
     }
 
@@ -69,9 +80,10 @@ impl Learner {
         Ok(())
     }
 
-    /// Eq. 34 without `u0`: `Σ w_i u^i` into `u` over the trained controllers active above the
-    /// cutoff, or, if there are none, over those with any activation (extrapolation). `None`
-    /// before the warm-up ends or where no trained controller is near.
+    /// Eq. 34 without `u0`, weighted by confidence: `Σ c_i w̃_i (u^i − u0)` into `u` over the
+    /// controllers with any confidence whose activation exceeds `partition.activation_cutoff`
+    /// (`w̃ = w − cutoff`, so a field's weight is continuous as it enters). `None` before the
+    /// warm-up ends or where no such controller is.
     fn blend(
         &mut self,
         q: &[f64],
@@ -85,34 +97,34 @@ impl Learner {
         let (ws, f) = (&mut self.ws, &self.features);
         let trained_ess = self.cfg.controllers.trained_ess;
         f.controller_common(&mut ws.phi, xdd_ref, qd);
-        let mut source = CommandSource::Learned;
+        let cut = self.cfg.partition.activation_cutoff;
+        models.forward.activations(q, qd, cut, &mut ws.acts)?;
+        u.fill(0.0);
         let (mut sum_w, mut sum_sigma) = (0.0, 0.0);
-        for cut in [self.cfg.partition.activation_cutoff, EXTRAPOLATION_CUTOFF] {
-            models.forward.activations(q, qd, cut, &mut ws.acts)?;
-            u.fill(0.0);
-            for a in &ws.acts {
-                let Some(local) = models.locals.map.get(&a.id) else {
-                    continue;
-                };
-                if local.untrained(trained_ess) {
-                    continue;
-                }
-                f.controller_local(&mut ws.phi, q, &local.center);
-                local.rwr.mean_into(&ws.phi, &mut ws.ui)?;
-                for (o, v) in u.iter_mut().zip(&ws.ui) {
-                    *o += a.w * v;
-                }
-                sum_w += a.w;
-                sum_sigma += a.w * local.rwr.sigma();
+        for a in &ws.acts {
+            let Some(local) = models.locals.map.get(&a.id) else {
+                continue;
+            };
+            let w = confidence(local.ess, trained_ess) * (a.w - cut);
+            if !(w > 0.0) {
+                continue;
             }
-            if sum_w > 0.0 {
-                break;
+            f.controller_local(&mut ws.phi, q, &local.center);
+            local.rwr.mean_into(&ws.phi, &mut ws.ui)?;
+            for (o, v) in u.iter_mut().zip(&ws.ui) {
+                *o += w * v;
             }
-            source = CommandSource::Extrapolated;
+            sum_w += w;
+            sum_sigma += w * local.rwr.sigma();
         }
-        if sum_w <= 0.0 {
+        if !(sum_w > 0.0) {
             return Ok(None);
         }
+        let source = if sum_w >= self.cfg.controllers.prior_weight {
+            CommandSource::Learned
+        } else {
+            CommandSource::Extrapolated
+        };
         Ok(Some(Blend {
             sum_w,
             sum_sigma,
@@ -120,7 +132,8 @@ impl Learner {
         }))
     }
 
-    /// Normalises the blend, adds `u0` (residual controllers) and the exploration noise.
+    /// Scales the blend by its support `κ = smoothstep(S / w0)` (1 from `S = w0` on), adds `u0`
+    /// (residual controllers) and the exploration noise (of the blended `σ`, scaled the same).
     fn finish_blend<R: Rng + ?Sized>(
         &mut self,
         q: &[f64],
@@ -132,9 +145,11 @@ impl Learner {
         if blend.source == CommandSource::Extrapolated {
             self.stats.extrapolations += 1;
         }
-        let sigma = self.cfg.exploration.scale * blend.sum_sigma / blend.sum_w;
+        let x = (blend.sum_w / self.cfg.controllers.prior_weight).min(1.0);
+        let kappa = x * x * (3.0 - 2.0 * x);
+        let sigma = self.cfg.exploration.scale * kappa * blend.sum_sigma / blend.sum_w;
         for v in u.iter_mut() {
-            *v /= blend.sum_w;
+            *v *= kappa / blend.sum_w;
         }
         if self.cfg.experimental.residual {
             let u0 = &mut self.ws.u0;
@@ -156,6 +171,7 @@ impl Learner {
                 &self.features,
                 models,
                 &mut self.ws,
+                &mut self.noise,
                 q,
                 sigma,
                 rng,
@@ -238,28 +254,40 @@ mod tests {
         local.rwr = OnlineRwr::with_theta(beta.clone(), rwr_cfg).unwrap();
         local.ess = 1e9;
         let center = local.center.clone();
-        // At the field's centre, and where it is far (extrapolated), the blend is its mean.
+        // At the field's centre the command is its mean plus u0; where its support is below
+        // w0 (extrapolated) the mean is scaled by κ = smoothstep((w − cutoff) / w0).
+        let (cut, w0) = (0.05, 0.05);
         for (qq, source) in [
             (center[..3].to_vec(), CommandSource::Learned),
             (
-                center[..3].iter().map(|c| c + 0.27).collect(),
+                center[..3].iter().map(|c| c + 0.1665).collect(),
                 CommandSource::Extrapolated,
             ),
         ] {
             let vd = center[3..].to_vec();
+            learner.start_episode(None); // no rate limit against the previous case
             let src = learner.command::<rand_chacha::ChaCha8Rng>(&qq, &vd, &xdd, None, &mut u);
             assert_eq!(src.unwrap(), source, "field {id:?}");
+            let mut acts = Vec::new();
+            let fwd = &mut fixture::models(&mut learner).forward;
+            fwd.activations(&qq, &vd, 1e-12, &mut acts).unwrap();
+            let w = acts.iter().find(|a| a.id == id).unwrap().w;
+            let x = ((w - cut) / w0).min(1.0);
+            let kappa = x * x * (3.0 - 2.0 * x);
             let mut phi = vec![0.0; p];
             learner.features.controller_common(&mut phi, &xdd, &vd);
             learner.features.controller_local(&mut phi, &qq, &center);
             learner.nominal(&qq, &vd, &mut u0).unwrap();
             for j in 0..3 {
                 let mean: f64 = (0..p).map(|r| phi[r] * beta[(r, j)]).sum();
-                let want = mean + u0[j];
+                let want = kappa * mean + u0[j];
                 assert!(
                     (u[j] - want).abs() < 1e-12 * (1.0 + want.abs()),
-                    "{u:?} vs {want}"
+                    "{source:?} w {w} {u:?} vs {want}"
                 );
+            }
+            if source == CommandSource::Extrapolated {
+                assert!(kappa > 0.0 && kappa < 1.0, "w = {w}");
             }
         }
         assert_eq!(learner.stats().extrapolations, 1);

@@ -61,17 +61,19 @@ impl Step<'_> {
         self.update_locals(cur, r)
     }
 
-    /// The models that learn from every transition without rewards: `ĝ` (unless frozen) and the
-    /// forward model (every `partition.learn_every`-th transition).
+    /// The models that learn from every transition without rewards: `ĝ` (unless frozen; its
+    /// static variant also when frozen, if configured) and the forward model (every
+    /// `partition.learn_every`-th transition).
     fn learn_supervised(&mut self, prev: &Measurement, cur: &Measurement) -> Result<()> {
         let (q, qd, u) = (cur.q.as_slice(), cur.qd.as_slice(), cur.u.as_slice());
         let dt = cur.t - prev.t;
+        let (q0, qd0) = (prev.q.as_slice(), prev.qd.as_slice());
         if dt > 0.0 && !self.gravity_frozen {
-            let (q0, qd0) = (prev.q.as_slice(), prev.qd.as_slice());
             self.models.gravity.learn(q0, qd0, q, qd, u, dt)?;
-            if let Some(g) = self.models.gravity_static.as_mut() {
-                g.learn(q0, qd0, q, qd, u, dt)?;
-            }
+        }
+        let static_on = !self.gravity_frozen || self.cfg.gravity.static_on_policy;
+        if let (true, true, Some(g)) = (dt > 0.0, static_on, self.models.gravity_static.as_mut()) {
+            g.learn(q0, qd0, q, qd, u, dt)?;
         }
         let every = self.cfg.partition.learn_every as u64;
         if self.stats.samples.is_multiple_of(every) {
@@ -110,7 +112,7 @@ impl Step<'_> {
         let (q, qd) = (cur.q.as_slice(), cur.qd.as_slice());
         self.ws.events.clear();
         self.models.forward.drain_events(&mut self.ws.events);
-        let init: &[f64] = if self.cfg.experimental.residual {
+        let init_u: &[f64] = if self.cfg.experimental.residual {
             &[]
         } else {
             cur.u.as_slice()
@@ -125,19 +127,32 @@ impl Step<'_> {
             trained_ess: self.cfg.controllers.trained_ess,
         };
         let models = &mut *self.models;
+        let (n, cutoff) = (self.n, self.cfg.partition.activation_cutoff);
+        let q_rows = self
+            .cfg
+            .experimental
+            .position_features
+            .then(|| self.m + n..self.m + 2 * n);
         for event in &self.ws.events {
             match *event {
-                RfEvent::Added {
-                    id, copied_from, ..
-                } => {
+                RfEvent::Added { id, .. } => {
                     let center = models
                         .forward
                         .center(id)
                         .unwrap_or_else(|| [q, qd].concat());
-                    let now = self.stats.samples;
+                    // Start from the trained neighbours' blend at the new centre.
+                    let (cq, cqd) = center.split_at(n);
                     models
-                        .locals
-                        .add(id, center, copied_from, init, &spec, now)?;
+                        .forward
+                        .activations(cq, cqd, cutoff, &mut self.ws.acts)?;
+                    let init = models.locals.neighbour_blend(
+                        &self.ws.acts,
+                        &center,
+                        q_rows.clone(),
+                        spec.trained_ess,
+                    );
+                    let now = self.stats.samples;
+                    models.locals.add(id, center, init, init_u, &spec, now)?;
                 }
                 RfEvent::Pruned { id, .. } => models.locals.remove(id),
             }

@@ -19,14 +19,17 @@ mod exploration;
 mod features;
 #[cfg(test)]
 pub(crate) mod fixture;
+mod guards;
 mod hindsight;
 mod models;
 mod nominal;
 mod null_space;
 mod stats;
 
+pub(crate) use command::confidence;
 pub use command::{CommandSource, EXTRAPOLATION_CUTOFF};
 pub(crate) use features::Features;
+pub use guards::RateLimiter;
 pub(crate) use models::Models;
 pub use stats::LearnerStats;
 
@@ -34,6 +37,7 @@ use crate::config::LearnerConfig;
 use crate::error::{LearnError, Result};
 use crate::forward::ForwardModel;
 use crate::gravity::GravityModel;
+use exploration::Noise;
 use osrl_dynamics::Measurement;
 use stats::Scratch;
 
@@ -75,6 +79,10 @@ pub struct Learner {
     /// `ĝ` no longer learns (see [`Learner::freeze_gravity`]).
     pub(crate) gravity_frozen: bool,
     pub(crate) ws: Scratch,
+    /// The exploration noise processes and the torque-rate limiter: the memory of the command
+    /// from one control period to the next (reset by [`Learner::start_episode`]).
+    pub(crate) noise: Noise,
+    pub(crate) rate: RateLimiter,
 }
 
 impl Learner {
@@ -93,7 +101,11 @@ impl Learner {
         let x = &cfg.experimental;
         let features = Features::new(n, m, x.position_features, x.dynamics_bilinear);
         let ws = Scratch::new(n, m, features.controller_len(), features.dynamics_len());
+        let noise = Noise::new(n, cfg.exploration.correlation_time, dt);
+        let rate = RateLimiter::new(n, cfg.guards.torque_rate_limit, dt);
         Ok(Self {
+            noise,
+            rate,
             state: State::WarmUp(Vec::with_capacity(cfg.guards.warmup_samples + 1)),
             cfg,
             n,
@@ -104,6 +116,13 @@ impl Learner {
             gravity_frozen: false,
             ws,
         })
+    }
+
+    /// Starts a new sequence of commands: the command last sent to the robot (`None`: unknown,
+    /// the next command is not rate limited) and the exploration noise back at 0.
+    pub fn start_episode(&mut self, last_sent: Option<&[f64]>) {
+        self.rate.reset(last_sent);
+        self.noise.reset();
     }
 
     pub fn config(&self) -> &LearnerConfig {

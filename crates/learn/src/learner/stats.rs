@@ -19,6 +19,9 @@ pub struct LearnerStats {
     pub pruned_untrained: u64,
     /// Commands with at least one joint clipped to its torque limit.
     pub clipped: u64,
+    /// Commands with at least one joint held to the torque-rate limit.
+    #[serde(default)]
+    pub rate_limited: u64,
     /// Commands whose learned blend was not finite and fell back to `u0`.
     pub non_finite: u64,
     /// Local M-steps done and those that failed (too few samples).

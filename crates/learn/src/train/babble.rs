@@ -61,9 +61,17 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
             // gravity model's samples).
             if noise > 0.0 && (k as f64) * self.dt < total {
                 let kp = &self.learner.config().nominal.kp;
-                for (u, k) in self.u.iter_mut().zip(kp) {
-                    let z: f64 = StandardNormal.sample(&mut self.rng);
-                    *u += noise * k * z;
+                let tau = self.cfg.babble.correlation_time;
+                let a = if tau > 0.0 {
+                    (-self.dt / tau).exp()
+                } else {
+                    0.0
+                };
+                let b = (1.0 - a * a).sqrt();
+                for ((u, k), z) in self.u.iter_mut().zip(kp).zip(&mut self.babble_noise) {
+                    let e: f64 = StandardNormal.sample(&mut self.rng);
+                    *z = a * *z + b * e;
+                    *u += noise * k * *z;
                 }
             }
             self.step()?;

@@ -28,6 +28,10 @@ pub struct BabbleConfig {
     /// gets standard deviation `noise · K_Pq,j` (N·m). It makes the commands vary independently
     /// of the state, so the local dynamics `Â = ∂ẍ/∂u` are identifiable. Default 0.02.
     pub noise: f64,
+    /// Correlation time of that noise (s; an Ornstein–Uhlenbeck process per joint; 0: white).
+    /// Default 0.05: smooth enough for the torque-rate limit, fast enough to decorrelate the
+    /// commands from the state.
+    pub correlation_time: f64,
 }
 
 impl Default for BabbleConfig {
@@ -39,6 +43,7 @@ impl Default for BabbleConfig {
             settle: 0.5,
             gain_scale: 3.0,
             noise: 0.02,
+            correlation_time: 0.05,
         }
     }
 }
@@ -61,7 +66,8 @@ pub struct TrainConfig {
     pub babble: BabbleConfig,
     /// Task-space gains of the reference dynamics (eq. 2).
     pub gains: TaskGains,
-    /// On-policy episodes last this long (s) unless the error grows too large. Default 40.
+    /// On-policy episodes run the path for this long (s), then stop and hold (see
+    /// `curriculum`), unless the error grows too large. Default 40.
     pub episode_seconds: f64,
     /// An episode stops when the task error exceeds this (m); the arm returns home. Default 0.05.
     pub reset_error: f64,
@@ -76,6 +82,12 @@ pub struct TrainConfig {
     pub learn_returning_home: bool,
     /// Exploration noise during the on-policy phase. Default true.
     pub explore: bool,
+    /// When the driver switches between its PD commands and the learned controller (an
+    /// episode's start and end), the sent command fades from the last one to the new source's
+    /// over this long (s), instead of jumping. Default 0.25.
+    pub switch_seconds: f64,
+    /// The curriculum and the path clock of the on-policy episodes.
+    pub curriculum: super::CurriculumConfig,
     /// Seed of the exploration and babbling noise. Default 0.
     pub seed: u64,
 }
@@ -93,6 +105,8 @@ impl Default for TrainConfig {
             learn_on_policy: true,
             learn_returning_home: true,
             explore: true,
+            switch_seconds: 0.25,
+            curriculum: super::CurriculumConfig::default(),
             seed: 0,
         }
     }
@@ -120,16 +134,18 @@ impl TrainConfig {
             ("babble.gain_scale", finite_pos(b.gain_scale)),
             ("babble.noise", finite_nonneg(b.noise)),
             ("babble.settle", finite_nonneg(b.settle)),
+            ("babble.correlation_time", finite_nonneg(b.correlation_time)),
             ("episode_seconds", finite_pos(self.episode_seconds)),
             ("reset_error", self.reset_error > 0.0),
             ("eval_every_minutes", finite_nonneg(self.eval_every_minutes)),
             ("learn_every", self.learn_every >= 1),
+            ("switch_seconds", finite_nonneg(self.switch_seconds)),
         ];
         match checks.iter().find(|(_, ok)| !ok) {
             Some((what, _)) => Err(LearnError::InvalidConfig(format!(
                 "training setting {what} is out of range: {self:?}"
             ))),
-            None => Ok(()),
+            None => self.curriculum.validate(),
         }
     }
 }

@@ -8,11 +8,13 @@
 
 mod babble;
 mod config;
+mod curriculum;
 mod observer;
 mod on_policy;
 mod trainer;
 
 pub use config::{BabbleConfig, TrainConfig};
+pub use curriculum::CurriculumConfig;
 pub use observer::{Observer, OnEvaluation, Phase, Progress};
 pub use trainer::{Evaluate, TrainSummary, Trainer};
 

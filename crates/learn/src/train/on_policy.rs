@@ -2,10 +2,10 @@
 //! controller and exploration noise, each stopped when the task error exceeds `reset_error`
 //! (counted as aborted), the arm brought home in between.
 
+use super::curriculum::EpisodePath;
 use super::observer::Phase;
 use super::Trainer;
 use crate::error::Result;
-use crate::eval::max_abs_diff;
 use osrl_control::{reference_acceleration, task_error};
 use osrl_dynamics::Robot;
 
@@ -43,48 +43,59 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
     fn return_home(&mut self) -> Result<()> {
         self.learning = self.cfg.learn_on_policy && self.cfg.learn_returning_home;
         let (home, limit) = (self.home.clone(), self.total_steps);
+        self.begin_fade();
         self.pd_move(&home, 2.0, 1.0, 0.0, limit)
     }
 
-    /// One episode along the path from its start: commands with exploration, learning from each
-    /// transition, stopped (aborted) when the task error exceeds `reset_error`.
+    /// One episode along the path from its start at the curriculum's stage: commands with
+    /// exploration, learning from each transition, stopped (aborted) when the task error exceeds
+    /// `reset_error`; the curriculum moves on by its outcome.
     fn episode(&mut self) -> Result<()> {
         self.learning = self.cfg.learn_on_policy;
         self.progress.episodes += 1;
-        let m = self.axes.len();
-        let mut xdd_ref = vec![0.0; m];
-        let mut last_u: Option<Vec<f64>> = None;
-        let k_ep = (self.cfg.episode_seconds / self.dt).round() as u64;
-        for k in 0..k_ep {
+        let cc = &self.cfg.curriculum;
+        let stage = self.curriculum.current();
+        let path = EpisodePath::new(
+            self.traj,
+            stage,
+            self.cfg.episode_seconds,
+            cc,
+            &mut self.rng,
+        );
+        let mut xdd_ref = vec![0.0; self.axes.len()];
+        // The fade from the PD hold takes the switch; the learner's own limiter starts afresh.
+        self.learner.start_episode(None);
+        self.begin_fade();
+        let (mut e2, mut count, mut aborted) = (0.0, 0u64, false);
+        for k in 0..(path.seconds / self.dt).round() as u64 {
             if self.done() {
                 break;
             }
             let t = k as f64 * self.dt;
             let prev = self.prev.clone();
-            let target = self.traj.sample(t);
+            let target = path.sample(self.traj, t);
             let (x, xd) = (prev.x.as_slice(), prev.xd.as_slice());
             reference_acceleration(&self.cfg.gains, &target, self.axes, x, xd, &mut xdd_ref);
             let rng = self.cfg.explore.then_some(&mut self.rng);
             let (q, qd) = (prev.q.as_slice(), prev.qd.as_slice());
             self.learner.command(q, qd, &xdd_ref, rng, &mut self.u)?;
-            match &mut last_u {
-                Some(last) => {
-                    self.max_step = self.max_step.max(max_abs_diff(last, &self.u));
-                    last.copy_from_slice(&self.u);
-                }
-                None => last_u = Some(self.u.clone()),
-            }
             self.step()?;
-            if self.task_error(t + self.dt) > self.cfg.reset_error {
+            let e = task_error(
+                &path.sample(self.traj, t + self.dt),
+                self.axes,
+                self.prev.x.as_slice(),
+            );
+            e2 += e * e;
+            count += 1;
+            if e > self.cfg.reset_error {
                 self.progress.aborted_episodes += 1;
+                aborted = true;
                 break;
             }
         }
+        let rms = (e2 / count.max(1) as f64).sqrt();
+        self.curriculum
+            .after_episode(aborted, rms, cc.advance_error);
         Ok(())
-    }
-
-    /// `‖x − x_d(t)‖` (m) of the last measurement.
-    fn task_error(&self, t: f64) -> f64 {
-        task_error(&self.traj.sample(t), self.axes, self.prev.x.as_slice())
     }
 }

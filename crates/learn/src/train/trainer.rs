@@ -2,11 +2,13 @@
 //! the clock, the evaluation schedule and the run's counters. Its phases are in `babble.rs` and
 //! `on_policy.rs`; [`Trainer::run`] reads as the list of them.
 
-use super::observer::{Observer, Progress};
+use super::curriculum::Curriculum;
+use super::observer::{Observer, Phase, Progress};
 use super::TrainConfig;
 use crate::error::{LearnError, Result};
+use crate::eval::max_abs_diff;
 use crate::eval::EvalResult;
-use crate::learner::{Learner, LearnerStats};
+use crate::learner::{Learner, LearnerStats, RateLimiter};
 use osrl_control::Trajectory;
 use osrl_dynamics::{Measurement, Robot};
 use rand::SeedableRng;
@@ -25,8 +27,16 @@ pub struct TrainSummary {
     pub aborted_episodes: u64,
     /// `(simulated minutes, evaluation)` pairs.
     pub learning_curve: Vec<(f64, EvalResult)>,
-    /// Largest change of the commanded torque between consecutive on-policy steps (N·m).
+    /// Largest change of a joint's command between consecutive on-policy commands (N·m),
+    /// exploration and the switches to and from the returns home included.
     pub max_command_step: f64,
+    /// The same as a rate: `max_command_step / dt` (N·m/s).
+    #[serde(default)]
+    pub max_torque_rate: f64,
+    /// Commands the training driver held to the torque-rate limit (it applies the limit to
+    /// every command it sends; the learner's own count is in `stats.rate_limited`).
+    #[serde(default)]
+    pub driver_rate_limited: u64,
     pub stats: LearnerStats,
     pub n_local_models: usize,
 }
@@ -62,8 +72,19 @@ pub struct Trainer<'a, R: Robot + ?Sized> {
     pub(super) learning: bool,
     curve: Vec<(f64, EvalResult)>,
     pub(super) progress: Progress,
-    /// Largest on-policy command step (N·m).
+    /// Largest on-policy command step (N·m) and the previous command sent, if on-policy.
     pub(super) max_step: f64,
+    pub(super) last_sent: Option<Vec<f64>>,
+    /// The torque-rate limit on the driver's own (PD) commands, and how often it acted.
+    pub(super) rate: RateLimiter,
+    pub(super) rate_limited: u64,
+    /// The babbling noise process (unit variance per joint).
+    pub(super) babble_noise: Vec<f64>,
+    /// The curriculum's current stage.
+    pub(super) curriculum: Curriculum,
+    /// The fade between command sources: the command it starts from and the steps left.
+    fade_from: Vec<f64>,
+    fade_left: u64,
     wall: Instant,
 }
 
@@ -95,6 +116,7 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
                 robot.task_dim()
             )));
         }
+        let rate = RateLimiter::new(n, learner.config().guards.torque_rate_limit, dt);
         let prev = robot.measurement().clone();
         let (q_min, q_max) = robot.joint_limits();
         let (q_min, q_max) = (q_min.to_vec(), q_max.to_vec());
@@ -124,6 +146,13 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
             curve: Vec::new(),
             progress: Progress::start(),
             max_step: 0.0,
+            last_sent: None,
+            rate,
+            rate_limited: 0,
+            babble_noise: vec![0.0; n],
+            curriculum: Curriculum::new(&cfg.curriculum),
+            fade_from: vec![0.0; n],
+            fade_left: 0,
             wall,
         })
     }
@@ -147,8 +176,41 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
         self.steps >= self.total_steps
     }
 
-    /// Applies `self.u` for one period, learns from the transition, evaluates when due.
+    /// Starts a fade from the command last sent to whatever comes next (a switch of source).
+    pub(super) fn begin_fade(&mut self) {
+        self.fade_from.copy_from_slice(&self.u);
+        self.fade_left = (self.cfg.switch_seconds / self.dt).round() as u64;
+    }
+
+    /// Blends `self.u` with the command the fade started from, `smoothstep` over its length.
+    fn fade(&mut self) {
+        if self.fade_left == 0 {
+            return;
+        }
+        let len = (self.cfg.switch_seconds / self.dt).round().max(1.0);
+        let x = 1.0 - self.fade_left as f64 / len;
+        let a = x * x * (3.0 - 2.0 * x);
+        for (u, f) in self.u.iter_mut().zip(&self.fade_from) {
+            *u = (1.0 - a) * f + a * *u;
+        }
+        self.fade_left -= 1;
+    }
+
+    /// Applies `self.u` (faded, if a fade is on) for one period, learns from the transition,
+    /// evaluates when due; in the on-policy phase also measures the command step.
     pub(super) fn step(&mut self) -> Result<()> {
+        self.fade();
+        if self.rate.apply(&mut self.u) {
+            self.rate_limited += 1;
+        }
+        if self.progress.phase == Phase::OnPolicy {
+            if let Some(last) = self.last_sent.as_mut() {
+                self.max_step = self.max_step.max(max_abs_diff(last, &self.u));
+                last.copy_from_slice(&self.u);
+            } else {
+                self.last_sent = Some(self.u.clone());
+            }
+        }
         let cur = self.robot.step(&self.u)?.clone();
         self.steps += 1;
         if self.learning && self.steps.is_multiple_of(self.cfg.learn_every as u64) {
@@ -207,6 +269,8 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
             aborted_episodes: self.progress.aborted_episodes,
             learning_curve: self.curve,
             max_command_step: self.max_step,
+            max_torque_rate: self.max_step / self.dt,
+            driver_rate_limited: self.rate_limited,
             stats: self.learner.stats(),
             n_local_models: self.learner.n_local_models(),
         }

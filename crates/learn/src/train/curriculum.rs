@@ -1,0 +1,274 @@
+//! The curriculum of the on-policy phase (`docs/learner.md`, "Safe learning"): episodes start on
+//! a shrunken, slowed copy of the task path — where the babbling data already reach — and move
+//! to the next stage after an episode that tracked well, back after an aborted one. Each episode
+//! runs on a path clock that stops smoothly now and then and at the end, holding the target still
+//! for a moment: the still samples teach the static gravity model along the path, and the end of
+//! an episode is at rest.
+
+use crate::error::{LearnError, Result};
+use osrl_control::{Target, Trajectory};
+use rand::RngExt;
+use rand_chacha::ChaCha8Rng;
+use serde::{Deserialize, Serialize};
+
+/// Settings of the curriculum and of the path clock.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct CurriculumConfig {
+    /// Stages `[amplitude, speed]`, first to last: the path shrunk about its start point by
+    /// `amplitude` and run at `speed` times its pace. The last stage should be `[1, 1]` (the task
+    /// itself). Empty: the task from the start. Default `[[0.25, 0.5], [0.5, 0.7], [0.75, 0.85],
+    /// [1, 1]]`: accelerations from 6 % of the task's up.
+    pub stages: Vec<[f64; 2]>,
+    /// An episode that was not aborted and whose RMS tracking error stayed below this (m)
+    /// advances the curriculum by one stage; an aborted one goes back one. Default 0.002.
+    pub advance_error: f64,
+    /// Mean time between stops of the path clock (s of episode, each interval drawn uniformly
+    /// in [0.5, 1.5] times it); 0: stop only at the end. Default 8.
+    pub stop_every: f64,
+    /// Time to decelerate the path to rest and to accelerate it again (s). Default 0.5.
+    pub stop_seconds: f64,
+    /// Time the target is held still at a stop (s). Default 1: the arm comes to rest.
+    pub hold_seconds: f64,
+}
+
+impl Default for CurriculumConfig {
+    fn default() -> Self {
+        Self {
+            stages: vec![[0.25, 0.5], [0.5, 0.7], [0.75, 0.85], [1.0, 1.0]],
+            advance_error: 0.002,
+            stop_every: 8.0,
+            stop_seconds: 0.5,
+            hold_seconds: 1.0,
+        }
+    }
+}
+
+impl CurriculumConfig {
+    /// Checks every field's range.
+    ///
+    /// # Errors
+    /// [`LearnError::InvalidConfig`] naming the field.
+    pub fn validate(&self) -> Result<()> {
+        let bad = |m: String| Err(LearnError::InvalidConfig(m));
+        for (i, [a, s]) in self.stages.iter().enumerate() {
+            if !(*a > 0.0 && *a <= 1.0 && *s > 0.0 && *s <= 1.0) {
+                return bad(format!(
+                    "curriculum.stages[{i}] = [{a}, {s}]: amplitude and speed must be in (0, 1]"
+                ));
+            }
+        }
+        let fields = [
+            ("advance_error", self.advance_error, false),
+            ("stop_every", self.stop_every, true),
+            ("stop_seconds", self.stop_seconds, false),
+            ("hold_seconds", self.hold_seconds, true),
+        ];
+        for (what, v, zero_ok) in fields {
+            if !(v.is_finite() && (v > 0.0 || (zero_ok && v == 0.0))) {
+                return bad(format!("curriculum.{what} = {v} is out of range"));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A segment of the path clock: the rate `τ̇` goes from `from` to `to` (times the stage's speed)
+/// over `seconds`, by a half cosine (constant when equal).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Segment {
+    start: f64,
+    seconds: f64,
+    from: f64,
+    to: f64,
+    /// Path time at the segment's start.
+    tau0: f64,
+}
+
+impl Segment {
+    /// `(τ, τ̇, τ̈)` at episode time `t` inside the segment (rates relative to the stage speed).
+    fn at(&self, t: f64) -> (f64, f64, f64) {
+        let s = (t - self.start).clamp(0.0, self.seconds);
+        let (a, b, len) = (self.from, self.to, self.seconds);
+        let w = std::f64::consts::PI / len;
+        // τ̇ = a + (b − a)(1 − cos(w s))/2
+        let rate = a + (b - a) * 0.5 * (1.0 - (w * s).cos());
+        let acc = (b - a) * 0.5 * w * (w * s).sin();
+        let tau = self.tau0 + a * s + (b - a) * 0.5 * (s - (w * s).sin() / w);
+        (tau, rate, acc)
+    }
+
+    fn end_tau(&self) -> f64 {
+        self.at(self.start + self.seconds).0
+    }
+}
+
+/// The path of one episode: the task path at a curriculum stage on a clock with stops.
+#[derive(Clone, Debug)]
+pub(crate) struct EpisodePath {
+    amplitude: f64,
+    speed: f64,
+    x0: nalgebra::Vector3<f64>,
+    segments: Vec<Segment>,
+    /// Episode length (s), the final stop and hold included.
+    pub seconds: f64,
+}
+
+impl EpisodePath {
+    /// An episode of `cruise` seconds of path at `stage` (`[amplitude, speed]`), stopping
+    /// about every `cfg.stop_every` seconds (intervals drawn from `rng`) and at the end.
+    pub fn new(
+        traj: &Trajectory,
+        stage: [f64; 2],
+        cruise: f64,
+        cfg: &CurriculumConfig,
+        rng: &mut ChaCha8Rng,
+    ) -> Self {
+        let (ts, th) = (cfg.stop_seconds, cfg.hold_seconds);
+        let mut segments = Vec::new();
+        let (mut t, mut tau) = (0.0, 0.0);
+        let push = |segments: &mut Vec<Segment>,
+                    t: &mut f64,
+                    tau: &mut f64,
+                    len: f64,
+                    from: f64,
+                    to: f64| {
+            let seg = Segment {
+                start: *t,
+                seconds: len,
+                from,
+                to,
+                tau0: *tau,
+            };
+            *tau = seg.end_tau();
+            *t += len;
+            segments.push(seg);
+        };
+        let mut left = cruise;
+        loop {
+            let run = if cfg.stop_every > 0.0 {
+                cfg.stop_every * rng.random_range(0.5..1.5)
+            } else {
+                f64::INFINITY
+            };
+            if run >= left {
+                push(&mut segments, &mut t, &mut tau, left.max(1e-9), 1.0, 1.0);
+                break;
+            }
+            push(&mut segments, &mut t, &mut tau, run, 1.0, 1.0);
+            push(&mut segments, &mut t, &mut tau, ts, 1.0, 0.0);
+            if th > 0.0 {
+                push(&mut segments, &mut t, &mut tau, th, 0.0, 0.0);
+            }
+            push(&mut segments, &mut t, &mut tau, ts, 0.0, 1.0);
+            left -= run;
+        }
+        push(&mut segments, &mut t, &mut tau, ts, 1.0, 0.0);
+        if th > 0.0 {
+            push(&mut segments, &mut t, &mut tau, th, 0.0, 0.0);
+        }
+        Self {
+            amplitude: stage[0],
+            speed: stage[1],
+            x0: traj.sample(0.0).x,
+            segments,
+            seconds: t,
+        }
+    }
+
+    /// The target at episode time `t`: `x0 + a (x(τ) − x0)` with `τ` the clock's path time
+    /// (times the speed), and its derivatives by the chain rule.
+    pub fn sample(&self, traj: &Trajectory, t: f64) -> Target {
+        let k = self
+            .segments
+            .partition_point(|s| s.start <= t)
+            .saturating_sub(1);
+        let (tau, rate, acc) = self.segments[k].at(t);
+        let (v, a) = (self.speed, self.amplitude);
+        let base = traj.sample(v * tau);
+        let (r, rr) = (v * rate, v * acc);
+        Target {
+            x: self.x0 + a * (base.x - self.x0),
+            xd: a * r * base.xd,
+            xdd: a * (r * r * base.xdd + rr * base.xd),
+        }
+    }
+}
+
+/// Where the curriculum stands.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Curriculum {
+    stages: Vec<[f64; 2]>,
+    pub stage: usize,
+}
+
+impl Curriculum {
+    pub fn new(cfg: &CurriculumConfig) -> Self {
+        let stages = if cfg.stages.is_empty() {
+            vec![[1.0, 1.0]]
+        } else {
+            cfg.stages.clone()
+        };
+        Self { stages, stage: 0 }
+    }
+
+    /// The current stage `[amplitude, speed]`.
+    pub fn current(&self) -> [f64; 2] {
+        self.stages[self.stage]
+    }
+
+    /// After an episode: forward on a good one, back on an aborted one.
+    pub fn after_episode(&mut self, aborted: bool, rms_error: f64, advance_error: f64) {
+        if aborted {
+            self.stage = self.stage.saturating_sub(1);
+        } else if rms_error < advance_error && self.stage + 1 < self.stages.len() {
+            self.stage += 1;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{CurriculumConfig, EpisodePath};
+    use osrl_control::TrajectoryConfig;
+    use osrl_dynamics::robots;
+    use rand::SeedableRng;
+
+    /// The episode's target is the scaled path, its velocity and acceleration are the
+    /// derivatives of its position (finite differences), it stops and is held still, and at
+    /// stage [1, 1] between stops it is the task path itself.
+    #[test]
+    fn the_episode_path_is_smooth_scaled_and_stops() {
+        let model = robots::planar3();
+        let traj = TrajectoryConfig::default().build(&model).unwrap();
+        let cfg = CurriculumConfig::default();
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(3);
+        let ep = EpisodePath::new(&traj, [0.5, 0.7], 20.0, &cfg, &mut rng);
+        assert!(ep.seconds > 20.0 + 1.5);
+        let h = 1e-5;
+        let mut still = 0;
+        for k in 1..(ep.seconds / 0.01) as usize - 1 {
+            let t = k as f64 * 0.01;
+            let (a, b, c) = (
+                ep.sample(&traj, t - h),
+                ep.sample(&traj, t),
+                ep.sample(&traj, t + h),
+            );
+            let v = (c.x - a.x) / (2.0 * h);
+            let acc = (c.xd - a.xd) / (2.0 * h);
+            assert!((v - b.xd).norm() < 1e-5, "t {t}: {v} vs {}", b.xd);
+            assert!((acc - b.xdd).norm() < 1e-3 * (1.0 + b.xdd.norm()), "t {t}");
+            still += (b.xd.norm() == 0.0) as usize;
+        }
+        assert!(still > 100, "held still for {still} samples");
+        // The end is at rest.
+        let end = ep.sample(&traj, ep.seconds);
+        assert_eq!((end.xd.norm(), end.xdd.norm()), (0.0, 0.0));
+        // Full stage, before the first stop: the task path.
+        let ep1 = EpisodePath::new(&traj, [1.0, 1.0], 20.0, &cfg, &mut rng);
+        for t in [0.0, 0.7, 2.0] {
+            let (a, b) = (ep1.sample(&traj, t), traj.sample(t));
+            assert!((a.x - b.x).norm() < 1e-15 && (a.xdd - b.xdd).norm() < 1e-12);
+        }
+    }
+}
