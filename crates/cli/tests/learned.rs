@@ -36,11 +36,21 @@ fn train_eval_simulate_round_trip() {
         "learning_curve",
         "max_command_step",
         "max_command_step_analytical",
+        "max_torque_rate",
+        "rate_limited",
+        "minutes_to_1mm",
+        "minutes_to_nmse_0.05",
+        "aborted_episodes",
         "counters",
     ] {
         assert!(t.get(key).is_some(), "train JSON lacks {key}: {t}");
     }
     assert!((t["sim_training_minutes"].as_f64().unwrap() - 0.2).abs() < 1e-6);
+    // All babbling: no on-policy command step, no time to 1 mm (null, not a number).
+    assert!(t["minutes_to_1mm"].is_null(), "{t}");
+    for k in ["clipped", "fallbacks", "rate_limited"] {
+        assert!(t["counters"][k].as_u64().is_some(), "counters.{k}: {t}");
+    }
     assert!(!t["learning_curve"].as_array().unwrap().is_empty());
     let saved = osrl_learn::SavedModel::load(&model).unwrap();
     assert_eq!(saved.info().robot, "planar3");

@@ -101,8 +101,14 @@ pub fn solve_ik(
 /// What [`check_reachable`] found.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Reach {
-    /// Posture at the start point `x_d(0)` by IK from `q_rest` (rad): start the robot here, at rest.
+    /// Home: the posture in which eq. 7 holds the start point `x_d(0)` at rest (rad), found by
+    /// [`crate::settle_at_start`] from `q_ik`; start the robot here, at rest. `q_ik` itself if
+    /// the arm does not come to rest there (`at_rest` false).
     pub q_start: Vec<f64>,
+    /// The posture at the start point by IK from `q_rest` (rad).
+    pub q_ik: Vec<f64>,
+    /// Whether `q_start` is the settled posture.
+    pub at_rest: bool,
     /// Largest IK residual along the path (m).
     pub max_residual: f64,
     /// Smallest distance of any joint to its limits along the IK path (rad).
@@ -116,6 +122,9 @@ pub struct Reach {
 /// 2. IK solves the start point from `q_rest`, then follows `opts.samples` points of one cycle,
 ///    each from the previous solution, keeping joints `opts.margin` inside their limits; a point
 ///    left more than 0.1 mm away is unreachable (error naming the time and the residual).
+/// 3. The home posture is where eq. 7 holds the start point at rest, from the IK posture
+///    ([`crate::settle_at_start`]): there the nominal pull of `u0` is balanced, so a run from
+///    home does not begin by swinging the redundant joints.
 pub fn check_reachable(model: &Model, traj: &Trajectory, opts: &IkOptions) -> Result<Reach> {
     let axes = model.task_axes();
     let links = model.links();
@@ -187,8 +196,14 @@ pub fn check_reachable(model: &Model, traj: &Trajectory, opts: &IkOptions) -> Re
             min_margin = min_margin.min(v - lo).min(hi - v);
         }
     }
+    let (home, at_rest) = match crate::settle_at_start(model, traj, &q_start) {
+        Ok(home) => (home, true),
+        Err(_) => (q_start.clone(), false),
+    };
     Ok(Reach {
-        q_start,
+        q_start: home,
+        q_ik: q_start,
+        at_rest,
         max_residual,
         min_margin,
     })

@@ -2,7 +2,7 @@
 //! (learning curves over seeds) from the finished training jobs.
 
 use crate::jobs::{JobResult, Trained};
-use crate::results::{Commands, Curves, LearnedRow, RunsSummary};
+use crate::results::{Commands, Curves, LearnedRow, RunsSummary, SafetyRow};
 use crate::stats::{EvalSummary, Missing, Outcome, Spread, SpreadSeries, Stat, Status};
 use osrl_learn::eval::{EvalResult, EvalSeries};
 use osrl_learn::Variant;
@@ -58,6 +58,25 @@ pub fn summarize(runs: &[&Trained]) -> RunsSummary {
         max_command_step_analytical: all(&|t| t.eval.max_command_step_analytical),
         diverged_runs: runs.iter().filter(|t| t.eval.diverged).count(),
         per_seed: runs.iter().map(|t| EvalSummary::from(&t.eval)).collect(),
+        safety: runs.iter().map(|t| safety(t)).collect(),
+    }
+}
+
+/// A run's learning safety.
+pub fn safety(t: &Trained) -> SafetyRow {
+    let s = &t.summary;
+    SafetyRow {
+        aborted_episodes: s.aborted_episodes,
+        braked_episodes: s.braked_episodes,
+        clipped_on_policy: s.clipped_on_policy,
+        fallbacks: s.stats.fallbacks,
+        rate_limited: s.rate_limited(),
+        max_command_step: s.max_command_step,
+        max_torque_rate: s.max_torque_rate,
+        max_command_step_analytical: t.eval.max_command_step_analytical,
+        minutes_to_1mm: s.minutes_to(|e| e.tracking_rms_mm <= 1.0),
+        minutes_to_nmse_0_05: s.minutes_to(|e| e.command_nmse <= 0.05),
+        step_curve: s.step_curve.clone(),
     }
 }
 

@@ -133,6 +133,34 @@ pub struct RunsSummary {
     pub max_command_step_analytical: Spread,
     pub diverged_runs: usize,
     pub per_seed: Vec<EvalSummary>,
+    /// Each run's learning safety, in the order of `per_seed`.
+    #[serde(default)]
+    pub safety: Vec<SafetyRow>,
+}
+
+/// The learning safety of one training run: what a physical robot would have gone through.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SafetyRow {
+    /// On-policy episodes stopped at the reset error (the arm taken home).
+    pub aborted_episodes: u64,
+    /// Episodes whose path clock braked to rest on a growing error.
+    pub braked_episodes: u64,
+    /// On-policy commands clipped to the torque limits.
+    pub clipped_on_policy: u64,
+    /// Learned commands that fell back to `u0` (no trained field near).
+    pub fallbacks: u64,
+    /// Commands held to the torque-rate limit.
+    pub rate_limited: u64,
+    /// Largest on-policy command step (N·m) and torque rate (N·m/s).
+    pub max_command_step: f64,
+    pub max_torque_rate: f64,
+    /// Largest step of eq. 7's `u*` in the final evaluation (N·m).
+    pub max_command_step_analytical: f64,
+    /// First evaluation at or below 1 mm tracking / 0.05 command nMSE (simulated minutes).
+    pub minutes_to_1mm: Option<f64>,
+    pub minutes_to_nmse_0_05: Option<f64>,
+    /// The largest on-policy command step per bin of simulated time.
+    pub step_curve: Vec<osrl_learn::train::StepPoint>,
 }
 
 /// E3 for one robot.

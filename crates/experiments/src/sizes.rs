@@ -79,8 +79,8 @@ impl Sizes {
                 eval_every_minutes: 1.0,
             },
             sarcos7: RobotSizes {
-                minutes: 3.0,
-                babble_minutes: Some(1.5),
+                minutes: 8.0,
+                babble_minutes: None,
                 eval_every_minutes: 1.0,
             },
         }

@@ -3,7 +3,8 @@
 //!
 //! `cargo run --release -p osrl-learn --example learning_curve -- ROBOT MINUTES [SEED]
 //! [EVAL_EVERY] [LEARNER_JSON]` (LEARNER_JSON: a `LearnerConfig` as JSON, fields as in
-//! `osrl train`'s `[learner]` section; the robot's data sheet fills the rest).
+//! `osrl train`'s `[learner]` section; the robot's data sheet fills the rest). With `EPISODES` set in
+//! the environment, each on-policy episode's report goes to stderr.
 
 use osrl_control::{check_reachable, IkOptions, TrajectoryConfig};
 use osrl_dynamics::robots;
@@ -32,15 +33,25 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         eval_every_minutes: every,
         ..TrainConfig::default()
     };
-    let (mut learner, summary) = train_simulated(&model, &traj, &home, lcfg, &cfg, 1, &mut |p| {
-        let e = p.eval.as_ref().map(serde_json::to_value);
-        println!(
-            "{}",
-            serde_json::json!({"sim_minutes": p.sim_minutes, "aborted": p.aborted_episodes,
-                               "episodes": p.episodes, "local_models": p.n_local_models,
-                               "eval": e.transpose().ok().flatten()})
-        );
-    })?;
+    struct Print(bool);
+    impl osrl_learn::train::Observer for Print {
+        fn evaluated(&mut self, p: &osrl_learn::train::Progress) {
+            let e = p.eval.as_ref().map(serde_json::to_value);
+            println!(
+                "{}",
+                serde_json::json!({"sim_minutes": p.sim_minutes, "aborted": p.aborted_episodes,
+                                   "episodes": p.episodes, "local_models": p.n_local_models,
+                                   "eval": e.transpose().ok().flatten()})
+            );
+        }
+        fn episode_ended(&mut self, p: &osrl_learn::train::Progress) {
+            if self.0 {
+                eprintln!("{:.3} min {:?}", p.sim_minutes, p.last_episode);
+            }
+        }
+    }
+    let mut print = Print(std::env::var("EPISODES").is_ok());
+    let (mut learner, summary) = train_simulated(&model, &traj, &home, lcfg, &cfg, 1, &mut print)?;
     if let Some(path) = args.get(5) {
         // The final evaluation's time series: t, then per joint u and u*.
         let mut ev = osrl_learn::eval::Evaluator::new(

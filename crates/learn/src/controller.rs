@@ -22,7 +22,7 @@
 //!     eval_every_minutes: 0.0,
 //!     ..TrainConfig::default()
 //! };
-//! let (learner, _summary) = train_simulated(&model, &traj, &home, lcfg, &tcfg, 1, &mut |_| {})?;
+//! let (learner, _summary) = train_simulated(&model, &traj, &home, lcfg, &tcfg, 1, &mut ())?;
 //! let mut ctrl = LearnedController::new(learner, tcfg.gains, model.task_axes())?;
 //! let mut sim = SimRobot::new(model.clone(), SimConfig::default())?;
 //! sim.reset(&home, &[0.0; 3])?;

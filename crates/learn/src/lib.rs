@@ -49,7 +49,7 @@ mod variant;
 
 pub use config::{
     ControllerConfig, CostKind, DynamicsConfig, ExplorationConfig, GravityConfig, GuardConfig,
-    LearnerConfig, NominalConfig, PartitionConfig,
+    LearnerConfig, NoiseProcess, NominalConfig, PartitionConfig,
 };
 pub use controller::{LearnedController, SourceCounts};
 pub use error::{LearnError, Result};

@@ -5,7 +5,7 @@
 //! drawn again without running anything ([`Page::load`], `osrl report --from`).
 
 use crate::error::{create_dir, write, ReportError, Result};
-use crate::figures::{commands, learned, path, toy};
+use crate::figures::{commands, learned, path, safety, toy};
 use crate::page::{self, Fig};
 use crate::plot;
 use crate::series;
@@ -271,6 +271,22 @@ fn learned_figures(out: &Path, page: &Page, setups: &[(&'static str, Setup)]) ->
             figs.push(Fig {
                 file: format!("E5/{robot}_curves.svg"),
                 caption: format!("E5 (paper Sec. V): {robot} tracking error, command nMSE against u* and command cost vs simulated training minutes, mean with min–max over seeds."),
+            });
+        }
+        if let Some(e3) = r.e3.get(robot).and_then(Outcome::done) {
+            let s = &e3.summary;
+            let f = safety::command_steps(
+                robot,
+                &s.safety,
+                &r.seeds,
+                s.max_command_step_analytical.max,
+                setup.sim().control_period,
+                r.config.sizes.robot(robot).minutes,
+            );
+            plot::save(&f, &out.join("E5"), &format!("{robot}_steps"))?;
+            figs.push(Fig {
+                file: format!("E5/{robot}_steps.svg"),
+                caption: format!("E5, learning safety: {robot}, the largest change of the command between consecutive on-policy commands in each 15 s of simulated training (exploration, switches and returns home included), per seed, next to the largest step of eq. 7's optimal command u* in the final evaluations (dashed)."),
             });
         }
     }

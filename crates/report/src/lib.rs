@@ -7,6 +7,7 @@ pub mod folder;
 pub mod page;
 pub mod plot;
 pub mod runs;
+mod safety;
 pub mod series;
 mod summary;
 

@@ -191,7 +191,7 @@ const SECTIONS: [Section; 7] = [
     ("E2", "Analytical operational space control (eq. 4 and eq. 7, N = I) with the true model: the baseline.", e2),
     ("E3", "The learned controller tracking the figure-8 on both robots (paper Fig. 2a/2b, 3b). Final evaluation of each seed, no exploration.", e3),
     ("E4", "Learned vs analytical optimal commands per joint along one cycle (paper Fig. 2c).", |_| String::new()),
-    ("E5", "Learning curves over simulated training time (paper Sec. V).", |_| String::new()),
+    ("E5", "Learning curves over simulated training time (paper Sec. V), and the learning safety of each training run: what a physical arm would have gone through.", crate::safety::table),
     ("E6", "Ablation: reward weighting off (supervised inverse learning), RWR as in the paper (full cost ‖u − u0‖², no hindsight null-space shrinkage), a global inverse model.", e6),
     ("E7", "Model errors: analytical eq. 7 with a wrong model vs the learned controller trained on the true robot.", e7),
 ];

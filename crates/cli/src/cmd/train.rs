@@ -16,6 +16,7 @@ use osrl_experiments::stats::{curve_points, measured, EvalSummary};
 use osrl_experiments::Setup;
 use osrl_learn::train::TrainSummary;
 use serde_json::{json, Value};
+use std::io::Write;
 use std::path::PathBuf;
 
 /// Arguments of `osrl train` (flags override the config file).
@@ -109,8 +110,20 @@ pub fn run(a: Args) -> Result<()> {
         .last()
         .map(|(_, e)| e.clone())
         .unwrap_or_default();
-    print_summary(&summary, &last, model.name(), setup.sim().control_period);
-    println!("wrote {}", a.out.display());
+    // With --json, stdout carries the JSON alone; the summary goes to stderr.
+    let mut text: Box<dyn std::io::Write> = if a.json {
+        Box::new(std::io::stderr())
+    } else {
+        Box::new(std::io::stdout())
+    };
+    print_summary(
+        &mut text,
+        &summary,
+        &last,
+        model.name(),
+        setup.sim().control_period,
+    )?;
+    writeln!(text, "wrote {}", a.out.display())?;
     if a.json {
         print_json(&summary_json(
             &summary,
@@ -121,21 +134,33 @@ pub fn run(a: Args) -> Result<()> {
     Ok(())
 }
 
-fn print_summary(s: &TrainSummary, last: &osrl_learn::eval::EvalResult, robot: &str, dt: f64) {
-    println!(
-        "{robot} · {:.1} simulated minutes at {:.1} ms in {:.1} s ({:.1}× real time) · {} local models · {} episodes ({} aborted)",
+fn print_summary(
+    out: &mut dyn std::io::Write,
+    s: &TrainSummary,
+    last: &osrl_learn::eval::EvalResult,
+    robot: &str,
+    dt: f64,
+) -> std::io::Result<()> {
+    writeln!(
+        out,
+        "{robot} · {:.1} simulated minutes at {:.1} ms in {:.1} s ({:.1}× real time) · {} local models · {} episodes ({} aborted, {} braked)",
         s.sim_training_minutes,
         1e3 * dt,
         s.wall_seconds,
         s.realtime_factor,
         s.n_local_models,
         s.episodes,
-        s.aborted_episodes
-    );
+        s.aborted_episodes,
+        s.braked_episodes
+    )?;
     if !measured(last) {
-        println!("the evaluation diverged during its warm-up period: no metrics");
+        writeln!(
+            out,
+            "the evaluation diverged during its warm-up period: no metrics"
+        )?;
     } else {
-        println!(
+        writeln!(
+            out,
             "final evaluation: tracking RMS {:.3} mm (max {:.3}), command nMSE {:.4}, cost ratio {:.3}, fallback share {:.3}{}",
             last.tracking_rms_mm,
             last.tracking_max_mm,
@@ -143,12 +168,19 @@ fn print_summary(s: &TrainSummary, last: &osrl_learn::eval::EvalResult, robot: &
             last.command_cost_ratio,
             last.fallback_share,
             if last.diverged { " — diverged" } else { "" }
-        );
+        )?;
     }
-    println!(
-        "largest command step during on-policy learning {:.2} N·m (analytical on the path {:.2})",
-        s.max_command_step, last.max_command_step_analytical
-    );
+    writeln!(
+        out,
+        "largest command step during on-policy learning {:.3} N·m = {:.0} N·m/s (analytical on \
+         the path {:.3}), {} commands rate-limited, {} clipped on-policy",
+        s.max_command_step,
+        s.max_torque_rate,
+        last.max_command_step_analytical,
+        s.rate_limited(),
+        s.clipped_on_policy
+    )?;
+    Ok(())
 }
 
 /// The JSON of a training run: the final evaluation's metrics, the run's numbers, the curve.
@@ -164,8 +196,15 @@ fn summary_json(s: &TrainSummary, final_eval: &EvalSummary, robot: &str) -> Resu
         "wall_seconds": s.wall_seconds,
         "realtime_factor": s.realtime_factor,
         "max_command_step": s.max_command_step,
+        "max_torque_rate": s.max_torque_rate,
+        "rate_limited": s.rate_limited(),
+        "clipped_on_policy": s.clipped_on_policy,
+        "command_step_curve": s.step_curve,
+        "minutes_to_1mm": s.minutes_to(|e| e.tracking_rms_mm <= 1.0),
+        "minutes_to_nmse_0.05": s.minutes_to(|e| e.command_nmse <= 0.05),
         "episodes": s.episodes,
         "aborted_episodes": s.aborted_episodes,
+        "braked_episodes": s.braked_episodes,
         "counters": s.stats,
         "learning_curve": curve_points(&s.learning_curve),
     });

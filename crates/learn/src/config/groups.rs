@@ -126,6 +126,18 @@ pub struct DynamicsConfig {
     pub solve_every: usize,
 }
 
+/// The random process of the exploration noise.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum NoiseProcess {
+    /// Ornstein–Uhlenbeck: `z ← a z + sqrt(1 − a²) e`, `a = exp(−dt/T)`, unit variance.
+    #[default]
+    OrnsteinUhlenbeck,
+    /// Standard normal knots (clipped at 3) `T` apart, joined by half-cosines: the per-period
+    /// change is at most `3π dt / T` by construction.
+    Smooth,
+}
+
 /// Exploration noise of the on-policy commands.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -133,10 +145,14 @@ pub struct ExplorationConfig {
     /// Scale of the noise relative to the blended `σ` of the local controllers (≥ 0). Default 1:
     /// RWR's own `σ` (eq. 24).
     pub scale: f64,
-    /// Correlation time of the noise (s): an Ornstein–Uhlenbeck process per joint, so the noise
-    /// adds a bounded torque rate instead of a new draw every control period. 0: white noise.
-    /// Default 0.1: about ten times smoother than white noise at 500 Hz, still many
-    /// independent draws per second.
+    /// The noise process. Default `ornstein_uhlenbeck`: its fine-grained variation identifies
+    /// the local dynamics `Â` fast; `smooth` bounds the torque rate by construction but learns
+    /// slower (`docs/decisions.md`).
+    pub process: NoiseProcess,
+    /// Correlation time of the noise (s): the Ornstein–Uhlenbeck time constant, or the spacing
+    /// of the smooth process's knots (its torque rate is then at most `3π σ / T`). 0: white
+    /// noise. Default 0.1: many independent draws per second, ten times smoother than white
+    /// noise at 500 Hz.
     pub correlation_time: f64,
     /// Cap per joint, as a share of the standard deviation of that joint's torques during the
     /// warm-up (≥ 0). Default 0.15: light distal joints are not shaken by the noise that suits
@@ -263,6 +279,7 @@ impl Default for ExplorationConfig {
     fn default() -> Self {
         Self {
             scale: 1.0,
+            process: NoiseProcess::OrnsteinUhlenbeck,
             correlation_time: 0.1,
             cap: 0.15,
         }

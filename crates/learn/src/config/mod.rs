@@ -7,7 +7,7 @@ mod validate;
 
 pub use groups::{
     ControllerConfig, CostKind, DynamicsConfig, Experimental, ExplorationConfig, GravityConfig,
-    GuardConfig, NominalConfig, PartitionConfig,
+    GuardConfig, NoiseProcess, NominalConfig, PartitionConfig,
 };
 use serde::{Deserialize, Serialize};
 

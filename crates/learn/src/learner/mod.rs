@@ -101,7 +101,12 @@ impl Learner {
         let x = &cfg.experimental;
         let features = Features::new(n, m, x.position_features, x.dynamics_bilinear);
         let ws = Scratch::new(n, m, features.controller_len(), features.dynamics_len());
-        let noise = Noise::new(n, cfg.exploration.correlation_time, dt);
+        let noise = Noise::new(
+            n,
+            cfg.exploration.process,
+            cfg.exploration.correlation_time,
+            dt,
+        );
         let rate = RateLimiter::new(n, cfg.guards.torque_rate_limit, dt);
         Ok(Self {
             noise,

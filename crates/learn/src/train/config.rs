@@ -86,6 +86,10 @@ pub struct TrainConfig {
     /// episode's start and end), the sent command fades from the last one to the new source's
     /// over this long (s), instead of jumping. Default 0.25.
     pub switch_seconds: f64,
+    /// The same for the first on-policy episode (s): the learned controller, trained on babbling
+    /// data only, takes over from the PD hold slowly while it learns from its first on-policy
+    /// samples. Default 5.
+    pub first_switch_seconds: f64,
     /// The curriculum and the path clock of the on-policy episodes.
     pub curriculum: super::CurriculumConfig,
     /// Seed of the exploration and babbling noise. Default 0.
@@ -106,6 +110,7 @@ impl Default for TrainConfig {
             learn_returning_home: true,
             explore: true,
             switch_seconds: 0.25,
+            first_switch_seconds: 5.0,
             curriculum: super::CurriculumConfig::default(),
             seed: 0,
         }
@@ -140,6 +145,10 @@ impl TrainConfig {
             ("eval_every_minutes", finite_nonneg(self.eval_every_minutes)),
             ("learn_every", self.learn_every >= 1),
             ("switch_seconds", finite_nonneg(self.switch_seconds)),
+            (
+                "first_switch_seconds",
+                finite_nonneg(self.first_switch_seconds),
+            ),
         ];
         match checks.iter().find(|(_, ok)| !ok) {
             Some((what, _)) => Err(LearnError::InvalidConfig(format!(

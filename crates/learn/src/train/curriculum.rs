@@ -30,6 +30,11 @@ pub struct CurriculumConfig {
     pub stop_seconds: f64,
     /// Time the target is held still at a stop (s). Default 1: the arm comes to rest.
     pub hold_seconds: f64,
+    /// When the task error exceeds this (m), the episode's path clock brakes to rest and the
+    /// episode ends there (counted as braked, and the curriculum goes back a stage), before the
+    /// error can reach `reset_error`. Default 0.01: a controller that has left its trained
+    /// region slows down while it still tracks, instead of diverging at full speed.
+    pub brake_error: f64,
 }
 
 impl Default for CurriculumConfig {
@@ -40,6 +45,7 @@ impl Default for CurriculumConfig {
             stop_every: 8.0,
             stop_seconds: 0.5,
             hold_seconds: 1.0,
+            brake_error: 0.01,
         }
     }
 }
@@ -63,6 +69,7 @@ impl CurriculumConfig {
             ("stop_every", self.stop_every, true),
             ("stop_seconds", self.stop_seconds, false),
             ("hold_seconds", self.hold_seconds, true),
+            ("brake_error", self.brake_error, false),
         ];
         for (what, v, zero_ok) in fields {
             if !(v.is_finite() && (v > 0.0 || (zero_ok && v == 0.0))) {
@@ -176,14 +183,45 @@ impl EpisodePath {
         }
     }
 
+    /// Brakes the path clock from episode time `t`: its rate goes from its value at `t` to rest
+    /// over `cfg.stop_seconds`, the target is then held for `cfg.hold_seconds`, and the episode
+    /// ends there.
+    pub fn brake(&mut self, t: f64, cfg: &CurriculumConfig) {
+        let k = self.segment(t);
+        let (tau, rate, _) = self.segments[k].at(t);
+        self.segments.truncate(k);
+        let stop = Segment {
+            start: t,
+            seconds: cfg.stop_seconds,
+            from: rate,
+            to: 0.0,
+            tau0: tau,
+        };
+        let end = stop.end_tau();
+        self.segments.push(stop);
+        self.seconds = t + cfg.stop_seconds;
+        if cfg.hold_seconds > 0.0 {
+            self.segments.push(Segment {
+                start: self.seconds,
+                seconds: cfg.hold_seconds,
+                from: 0.0,
+                to: 0.0,
+                tau0: end,
+            });
+            self.seconds += cfg.hold_seconds;
+        }
+    }
+
+    fn segment(&self, t: f64) -> usize {
+        self.segments
+            .partition_point(|s| s.start <= t)
+            .saturating_sub(1)
+    }
+
     /// The target at episode time `t`: `x0 + a (x(τ) − x0)` with `τ` the clock's path time
     /// (times the speed), and its derivatives by the chain rule.
     pub fn sample(&self, traj: &Trajectory, t: f64) -> Target {
-        let k = self
-            .segments
-            .partition_point(|s| s.start <= t)
-            .saturating_sub(1);
-        let (tau, rate, acc) = self.segments[k].at(t);
+        let (tau, rate, acc) = self.segments[self.segment(t)].at(t);
         let (v, a) = (self.speed, self.amplitude);
         let base = traj.sample(v * tau);
         let (r, rr) = (v * rate, v * acc);
@@ -217,9 +255,9 @@ impl Curriculum {
         self.stages[self.stage]
     }
 
-    /// After an episode: forward on a good one, back on an aborted one.
-    pub fn after_episode(&mut self, aborted: bool, rms_error: f64, advance_error: f64) {
-        if aborted {
+    /// After an episode: forward on a good one, back on an aborted or braked one.
+    pub fn after_episode(&mut self, failed: bool, rms_error: f64, advance_error: f64) {
+        if failed {
             self.stage = self.stage.saturating_sub(1);
         } else if rms_error < advance_error && self.stage + 1 < self.stages.len() {
             self.stage += 1;
@@ -263,6 +301,15 @@ mod tests {
         assert!(still > 100, "held still for {still} samples");
         // The end is at rest.
         let end = ep.sample(&traj, ep.seconds);
+        assert_eq!((end.xd.norm(), end.xdd.norm()), (0.0, 0.0));
+        // Braking mid-cruise: the target stays smooth and ends at rest, held.
+        let mut br = EpisodePath::new(&traj, [1.0, 1.0], 20.0, &cfg, &mut rng);
+        let before = br.sample(&traj, 1.0);
+        br.brake(1.0, &cfg);
+        let after = br.sample(&traj, 1.0);
+        assert!((before.x - after.x).norm() < 1e-15 && (before.xd - after.xd).norm() < 1e-12);
+        assert!((br.seconds - 1.0 - cfg.stop_seconds - cfg.hold_seconds).abs() < 1e-12);
+        let end = br.sample(&traj, br.seconds);
         assert_eq!((end.xd.norm(), end.xdd.norm()), (0.0, 0.0));
         // Full stage, before the first stop: the task path.
         let ep1 = EpisodePath::new(&traj, [1.0, 1.0], 20.0, &cfg, &mut rng);

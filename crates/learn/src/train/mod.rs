@@ -11,11 +11,13 @@ mod config;
 mod curriculum;
 mod observer;
 mod on_policy;
+mod safety;
 mod trainer;
 
 pub use config::{BabbleConfig, TrainConfig};
 pub use curriculum::CurriculumConfig;
-pub use observer::{Observer, OnEvaluation, Phase, Progress};
+pub use observer::{EpisodeReport, Observer, OnEvaluation, Phase, Progress};
+pub use safety::{StepPoint, STEP_BIN_SECONDS};
 pub use trainer::{Evaluate, TrainSummary, Trainer};
 
 use crate::error::Result;
@@ -42,7 +44,7 @@ pub fn train<R: Robot + ?Sized>(
     Trainer::new(robot, learner, traj, axes, cfg, evaluate, &mut observer)?.run()
 }
 
-/// [`train`] on a simulated robot, for examples and experiments: a fresh learner with `lcfg`
+/// [`Trainer::run`] on a simulated robot, for examples and experiments: a fresh learner with `lcfg`
 /// trained on a [`SimRobot`](osrl_dynamics::SimRobot) of `truth` (default
 /// [`SimConfig`](osrl_dynamics::SimConfig), noise seeded with `cfg.seed`) starting at rest at
 /// `home`, evaluated by an [`Evaluator`](crate::eval::Evaluator) on the same model over
@@ -58,7 +60,7 @@ pub fn train_simulated(
     lcfg: crate::LearnerConfig,
     cfg: &TrainConfig,
     eval_periods: usize,
-    observe: &mut dyn FnMut(&Progress),
+    observer: &mut dyn Observer,
 ) -> Result<(Learner, TrainSummary)> {
     let sim_cfg = osrl_dynamics::SimConfig {
         seed: cfg.seed,
@@ -78,14 +80,15 @@ pub fn train_simulated(
     )?;
     let axes = truth.task_axes();
     let mut evaluate = |l: &mut Learner| ev.evaluate(l);
-    let summary = train(
+    let summary = Trainer::new(
         &mut sim,
         &mut learner,
         traj,
         axes,
         cfg,
         &mut evaluate,
-        observe,
-    )?;
+        observer,
+    )?
+    .run()?;
     Ok((learner, summary))
 }

@@ -34,10 +34,32 @@ pub struct Progress {
     pub n_trained: usize,
     pub episodes: u64,
     pub aborted_episodes: u64,
+    /// Episodes whose path clock braked to rest on a growing task error (see
+    /// [`CurriculumConfig::brake_error`](super::CurriculumConfig::brake_error)).
+    #[serde(default)]
+    pub braked_episodes: u64,
     /// Last evaluation result, if any.
     pub eval: Option<EvalResult>,
     /// Largest change of the commanded torque between two consecutive on-policy steps (N·m).
     pub max_command_step: f64,
+    /// The curriculum's stage (index into `curriculum.stages`) and the last episode, if any.
+    #[serde(default)]
+    pub stage: usize,
+    #[serde(default)]
+    pub last_episode: Option<EpisodeReport>,
+}
+
+/// How an on-policy episode went.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct EpisodeReport {
+    /// Simulated seconds it ran, and whether it was aborted or braked.
+    pub seconds: f64,
+    pub aborted: bool,
+    #[serde(default)]
+    pub braked: bool,
+    /// RMS of the task error over it (m), and its stage `[amplitude, speed]`.
+    pub rms_error: f64,
+    pub stage: [f64; 2],
 }
 
 impl Progress {
@@ -50,8 +72,11 @@ impl Progress {
             n_trained: 0,
             episodes: 0,
             aborted_episodes: 0,
+            braked_episodes: 0,
             eval: None,
             max_command_step: 0.0,
+            stage: 0,
+            last_episode: None,
         }
     }
 }

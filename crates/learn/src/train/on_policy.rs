@@ -3,7 +3,7 @@
 //! (counted as aborted), the arm brought home in between.
 
 use super::curriculum::EpisodePath;
-use super::observer::Phase;
+use super::observer::{EpisodeReport, Phase};
 use super::Trainer;
 use crate::error::Result;
 use osrl_control::{reference_acceleration, task_error};
@@ -13,6 +13,7 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
     /// On-policy learning until the run's time is up. `ĝ` is frozen unless configured otherwise.
     pub(super) fn on_policy(&mut self) -> Result<()> {
         self.progress.phase = Phase::OnPolicy;
+        self.clipped_before = self.learner.stats().clipped;
         self.learning = self.cfg.learn_on_policy;
         let gravity_on = self.learner.config().experimental.gravity_on_policy;
         self.learner.freeze_gravity(!gravity_on);
@@ -43,7 +44,7 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
     fn return_home(&mut self) -> Result<()> {
         self.learning = self.cfg.learn_on_policy && self.cfg.learn_returning_home;
         let (home, limit) = (self.home.clone(), self.total_steps);
-        self.begin_fade();
+        self.begin_fade(self.cfg.switch_seconds);
         self.pd_move(&home, 2.0, 1.0, 0.0, limit)
     }
 
@@ -55,7 +56,7 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
         self.progress.episodes += 1;
         let cc = &self.cfg.curriculum;
         let stage = self.curriculum.current();
-        let path = EpisodePath::new(
+        let mut path = EpisodePath::new(
             self.traj,
             stage,
             self.cfg.episode_seconds,
@@ -65,13 +66,18 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
         let mut xdd_ref = vec![0.0; self.axes.len()];
         // The fade from the PD hold takes the switch; the learner's own limiter starts afresh.
         self.learner.start_episode(None);
-        self.begin_fade();
-        let (mut e2, mut count, mut aborted) = (0.0, 0u64, false);
-        for k in 0..(path.seconds / self.dt).round() as u64 {
-            if self.done() {
-                break;
-            }
+        let first = self.progress.episodes == 1;
+        let c = &self.cfg;
+        self.begin_fade(if first {
+            c.first_switch_seconds
+        } else {
+            c.switch_seconds
+        });
+        let (mut e2, mut count, mut aborted, mut braked) = (0.0, 0u64, false, false);
+        let mut k = 0u64;
+        while (k as f64) < (path.seconds / self.dt).round() && !self.done() {
             let t = k as f64 * self.dt;
+            k += 1;
             let prev = self.prev.clone();
             let target = path.sample(self.traj, t);
             let (x, xd) = (prev.x.as_slice(), prev.xd.as_slice());
@@ -92,10 +98,23 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
                 aborted = true;
                 break;
             }
+            if e > cc.brake_error && !braked {
+                path.brake(t + self.dt, cc);
+                self.progress.braked_episodes += 1;
+                braked = true;
+            }
         }
         let rms = (e2 / count.max(1) as f64).sqrt();
         self.curriculum
-            .after_episode(aborted, rms, cc.advance_error);
+            .after_episode(aborted || braked, rms, cc.advance_error);
+        self.progress.stage = self.curriculum.stage;
+        self.progress.last_episode = Some(EpisodeReport {
+            seconds: count as f64 * self.dt,
+            aborted,
+            braked,
+            rms_error: rms,
+            stage,
+        });
         Ok(())
     }
 }

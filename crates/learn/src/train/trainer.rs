@@ -4,9 +4,9 @@
 
 use super::curriculum::Curriculum;
 use super::observer::{Observer, Phase, Progress};
+use super::safety::{StepMonitor, StepPoint};
 use super::TrainConfig;
 use crate::error::{LearnError, Result};
-use crate::eval::max_abs_diff;
 use crate::eval::EvalResult;
 use crate::learner::{Learner, LearnerStats, RateLimiter};
 use osrl_control::Trajectory;
@@ -25,6 +25,9 @@ pub struct TrainSummary {
     pub realtime_factor: f64,
     pub episodes: u64,
     pub aborted_episodes: u64,
+    /// Episodes ended early by braking the path clock on a growing task error.
+    #[serde(default)]
+    pub braked_episodes: u64,
     /// `(simulated minutes, evaluation)` pairs.
     pub learning_curve: Vec<(f64, EvalResult)>,
     /// Largest change of a joint's command between consecutive on-policy commands (N·m),
@@ -37,8 +40,31 @@ pub struct TrainSummary {
     /// every command it sends; the learner's own count is in `stats.rate_limited`).
     #[serde(default)]
     pub driver_rate_limited: u64,
+    /// The largest on-policy command step per bin of simulated time.
+    #[serde(default)]
+    pub step_curve: Vec<StepPoint>,
+    /// Commands clipped to the torque limits in the on-policy phase (the learner's and the
+    /// driver's: every command sent is clipped).
+    #[serde(default)]
+    pub clipped_on_policy: u64,
     pub stats: LearnerStats,
     pub n_local_models: usize,
+}
+
+impl TrainSummary {
+    /// The simulated minute of the first evaluation that did not diverge and meets `pred`
+    /// (`None` if none did).
+    pub fn minutes_to(&self, pred: impl Fn(&EvalResult) -> bool) -> Option<f64> {
+        self.learning_curve
+            .iter()
+            .find(|(_, e)| !e.diverged && pred(e))
+            .map(|(t, _)| *t)
+    }
+
+    /// Commands held to the torque-rate limit, by the learner or by the driver.
+    pub fn rate_limited(&self) -> u64 {
+        self.stats.rate_limited + self.driver_rate_limited
+    }
 }
 
 /// Evaluates the learner (without exploration or learning) and returns the metrics.
@@ -72,9 +98,11 @@ pub struct Trainer<'a, R: Robot + ?Sized> {
     pub(super) learning: bool,
     curve: Vec<(f64, EvalResult)>,
     pub(super) progress: Progress,
-    /// Largest on-policy command step (N·m) and the previous command sent, if on-policy.
-    pub(super) max_step: f64,
-    pub(super) last_sent: Option<Vec<f64>>,
+    /// The on-policy command steps, and the learner's clipped count when on-policy began.
+    pub(super) steps_seen: StepMonitor,
+    pub(super) clipped_before: u64,
+    /// On-policy commands of the driver (fades, returns home) clipped to the torque limits.
+    driver_clipped: u64,
     /// The torque-rate limit on the driver's own (PD) commands, and how often it acted.
     pub(super) rate: RateLimiter,
     pub(super) rate_limited: u64,
@@ -85,6 +113,7 @@ pub struct Trainer<'a, R: Robot + ?Sized> {
     /// The fade between command sources: the command it starts from and the steps left.
     fade_from: Vec<f64>,
     fade_left: u64,
+    fade_len: u64,
     wall: Instant,
 }
 
@@ -145,14 +174,16 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
             learning: true,
             curve: Vec::new(),
             progress: Progress::start(),
-            max_step: 0.0,
-            last_sent: None,
+            steps_seen: StepMonitor::new(n, dt),
+            clipped_before: 0,
+            driver_clipped: 0,
             rate,
             rate_limited: 0,
             babble_noise: vec![0.0; n],
             curriculum: Curriculum::new(&cfg.curriculum),
             fade_from: vec![0.0; n],
             fade_left: 0,
+            fade_len: 1,
             wall,
         })
     }
@@ -177,9 +208,10 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
     }
 
     /// Starts a fade from the command last sent to whatever comes next (a switch of source).
-    pub(super) fn begin_fade(&mut self) {
+    pub(super) fn begin_fade(&mut self, seconds: f64) {
         self.fade_from.copy_from_slice(&self.u);
-        self.fade_left = (self.cfg.switch_seconds / self.dt).round() as u64;
+        self.fade_left = (seconds / self.dt).round() as u64;
+        self.fade_len = self.fade_left.max(1);
     }
 
     /// Blends `self.u` with the command the fade started from, `smoothstep` over its length.
@@ -187,8 +219,7 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
         if self.fade_left == 0 {
             return;
         }
-        let len = (self.cfg.switch_seconds / self.dt).round().max(1.0);
-        let x = 1.0 - self.fade_left as f64 / len;
+        let x = 1.0 - self.fade_left as f64 / self.fade_len as f64;
         let a = x * x * (3.0 - 2.0 * x);
         for (u, f) in self.u.iter_mut().zip(&self.fade_from) {
             *u = (1.0 - a) * f + a * *u;
@@ -200,19 +231,24 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
     /// evaluates when due; in the on-policy phase also measures the command step.
     pub(super) fn step(&mut self) -> Result<()> {
         self.fade();
+        let limits = &self.learner.config().guards.torque_limits;
+        let mut clipped = false;
+        for (u, lim) in self.u.iter_mut().zip(limits) {
+            clipped |= u.abs() > *lim;
+            *u = u.clamp(-lim, *lim);
+        }
+        if clipped && self.progress.phase == Phase::OnPolicy {
+            self.driver_clipped += 1;
+        }
         if self.rate.apply(&mut self.u) {
             self.rate_limited += 1;
         }
         if self.progress.phase == Phase::OnPolicy {
-            if let Some(last) = self.last_sent.as_mut() {
-                self.max_step = self.max_step.max(max_abs_diff(last, &self.u));
-                last.copy_from_slice(&self.u);
-            } else {
-                self.last_sent = Some(self.u.clone());
-            }
+            self.steps_seen.sent(&self.u);
         }
         let cur = self.robot.step(&self.u)?.clone();
         self.steps += 1;
+        self.steps_seen.tick(self.steps, self.per_min);
         if self.learning && self.steps.is_multiple_of(self.cfg.learn_every as u64) {
             match self.learner.learn(&self.prev, &cur) {
                 Ok(()) | Err(LearnError::BadMeasurement(_)) => {}
@@ -241,7 +277,8 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
 
     /// Shows the end of an episode to the observer.
     pub(super) fn episode_ended(&mut self) {
-        self.progress.max_command_step = self.max_step;
+        self.progress.sim_minutes = self.minutes();
+        self.progress.max_command_step = self.steps_seen.max_step;
         self.observer.episode_ended(&self.progress);
     }
 
@@ -258,7 +295,8 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
         Ok(())
     }
 
-    fn summary(self) -> TrainSummary {
+    fn summary(mut self) -> TrainSummary {
+        self.steps_seen.close(self.steps, self.per_min);
         let wall_seconds = self.wall.elapsed().as_secs_f64();
         let minutes = self.minutes();
         TrainSummary {
@@ -267,9 +305,13 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
             realtime_factor: minutes * 60.0 / wall_seconds.max(1e-9),
             episodes: self.progress.episodes,
             aborted_episodes: self.progress.aborted_episodes,
+            braked_episodes: self.progress.braked_episodes,
             learning_curve: self.curve,
-            max_command_step: self.max_step,
-            max_torque_rate: self.max_step / self.dt,
+            max_command_step: self.steps_seen.max_step,
+            max_torque_rate: self.steps_seen.max_step / self.dt,
+            step_curve: std::mem::take(&mut self.steps_seen.curve),
+            clipped_on_policy: self.learner.stats().clipped - self.clipped_before
+                + self.driver_clipped,
             driver_rate_limited: self.rate_limited,
             stats: self.learner.stats(),
             n_local_models: self.learner.n_local_models(),

@@ -4,4 +4,5 @@
 pub mod commands;
 pub mod learned;
 pub mod path;
+pub mod safety;
 pub mod toy;
