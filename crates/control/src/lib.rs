@@ -1,6 +1,6 @@
 //! Task-space trajectories, reference dynamics (paper eq. 2), the nominal behaviour `u0` (eq. 6
 //! plus gravity compensation) and the analytical operational space controllers (eq. 4 and the
-//! corrected eq. 7 of DESIGN.md §3) with a damped pseudo-inverse, model errors, and the
+//! corrected eq. 7 of the crate README's "Choices") with a damped pseudo-inverse, model errors, and the
 //! closed-loop driver that runs a controller on a robot and measures the tracking.
 //!
 //! ```

@@ -1,4 +1,4 @@
-//! The simulated robot and the measurement boundary the learner sees (DESIGN.md §2).
+//! The simulated robot and the measurement boundary the learner sees (`docs/architecture.md`, "The measurement boundary").
 //!
 //! A learner holds a `&mut dyn Robot` (or `impl Robot`): it can send torques and read
 //! [`Measurement`]s, nothing else — the trait exposes no model, so the compiler keeps the learner
