@@ -233,22 +233,19 @@ impl<'a> Comparison<'a> {
     }
 }
 
-impl StepObserver<EvalController<'_>> for Comparison<'_> {
-    fn observe(
-        &mut self,
-        ctrl: &mut EvalController,
-        step: &StepView,
-    ) -> osrl_control::Result<ControlFlow<()>> {
-        let (meas, u) = (step.meas, step.u);
-        let (q, qd) = (meas.q.as_slice(), meas.qd.as_slice());
-        if let Err(e) = self.optimum(meas, &ctrl.xdd_ref) {
-            return Err(keep(&mut self.error, e));
-        }
-        let learner = &mut *ctrl.learner;
-        if let Err(e) = learner.nominal(q, qd, &mut self.u0_hat) {
-            return Err(keep(&mut self.error, e));
-        }
-        // The error split against the true B = J M⁻¹ at this state (0 where B is singular).
+/// One step's error split against the true `A = J M⁻¹` (0 where `A` is singular): the parts of
+/// `u − u*` and of `û0 − u0` in its null space, `‖û0 − u0‖²`, and the error of `Â` (if any).
+struct Split {
+    null2: f64,
+    nom_null2: f64,
+    nom2: f64,
+    gain_err: Option<f64>,
+}
+
+impl Comparison<'_> {
+    /// The error split of the learned command `u` at `(q, q̇)` (after [`Comparison::optimum`]).
+    fn split(&mut self, learner: &mut Learner, q: &[f64], qd: &[f64], u: &[f64]) -> Result<Split> {
+        learner.nominal(q, qd, &mut self.u0_hat)?;
         let truth = TrueGain::new(self.osc.data(), &self.axes);
         let null2 = truth
             .as_ref()
@@ -256,10 +253,7 @@ impl StepObserver<EvalController<'_>> for Comparison<'_> {
         let nom_null2 = truth
             .as_ref()
             .map_or(0.0, |t| t.null_part2(&self.u0_hat, &self.u0));
-        let has_gain = match learner.input_gain(q, qd, &mut self.a_hat) {
-            Ok(known) => known,
-            Err(e) => return Err(keep(&mut self.error, e)),
-        };
+        let has_gain = learner.input_gain(q, qd, &mut self.a_hat)?;
         let gain_err = truth
             .filter(|_| has_gain)
             .map(|t| t.gain_error(&self.a_hat));
@@ -269,6 +263,46 @@ impl StepObserver<EvalController<'_>> for Comparison<'_> {
             .zip(&self.u0)
             .map(|(a, b)| (a - b).powi(2))
             .sum();
+        Ok(Split {
+            null2,
+            nom_null2,
+            nom2,
+            gain_err,
+        })
+    }
+
+    /// Adds one step to the window (from step `warm` on) and to the whole run.
+    fn accumulate(&mut self, k: usize, e: f64, fallback: bool, u: &[f64], split: &Split) {
+        for (acc, on) in [(&mut self.window, k >= self.warm), (&mut self.all, true)] {
+            if on {
+                acc.add(e, fallback, u, &self.u_star, &self.u0);
+                acc.null2 += split.null2;
+                acc.nom2 += split.nom2;
+                acc.nom_null2 += split.nom_null2;
+                if let Some(g) = split.gain_err {
+                    acc.gain_err += g;
+                    acc.gain_count += 1;
+                }
+            }
+        }
+    }
+}
+
+impl StepObserver<EvalController<'_>> for Comparison<'_> {
+    fn observe(
+        &mut self,
+        ctrl: &mut EvalController,
+        step: &StepView,
+    ) -> osrl_control::Result<ControlFlow<()>> {
+        let (meas, u) = (step.meas, step.u);
+        let (q, qd) = (meas.q.as_slice(), meas.qd.as_slice());
+        let split = self
+            .optimum(meas, &ctrl.xdd_ref)
+            .and_then(|()| self.split(ctrl.learner, q, qd, u));
+        let split = match split {
+            Ok(split) => split,
+            Err(e) => return Err(keep(&mut self.error, e)),
+        };
         let e = osrl_control::task_error(step.target, &self.axes, meas.x.as_slice());
         if step.k > 0 {
             self.step_l = self.step_l.max(max_abs_diff(&self.prev_u, u));
@@ -278,21 +312,7 @@ impl StepObserver<EvalController<'_>> for Comparison<'_> {
         self.prev_us.copy_from_slice(&self.u_star);
         self.record(step, ctrl.seconds);
         let fallback = ctrl.source == CommandSource::Fallback;
-        for (acc, on) in [
-            (&mut self.window, step.k >= self.warm),
-            (&mut self.all, true),
-        ] {
-            if on {
-                acc.add(e, fallback, u, &self.u_star, &self.u0);
-                acc.null2 += null2;
-                acc.nom2 += nom2;
-                acc.nom_null2 += nom_null2;
-                if let Some(g) = gain_err {
-                    acc.gain_err += g;
-                    acc.gain_count += 1;
-                }
-            }
-        }
+        self.accumulate(step.k, e, fallback, u, &split);
         Ok(if e > 0.2 {
             ControlFlow::Break(())
         } else {
