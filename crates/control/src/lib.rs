@@ -16,6 +16,11 @@
 //! assert!(run.metrics.tracking_rms_mm < 0.5);
 //! ```
 
+// The README's example compiles and runs (`cargo test --doc`).
+#[doc = include_str!("../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;
+
 mod closed_loop;
 mod config;
 mod controller;
