@@ -1,10 +1,11 @@
 #!/usr/bin/env python3
 """An independent LWPR, for the cross-check of crates/lwpr/tests/reference.rs.
 
-A second implementation of the update and prediction of shared/LWPR.md
-(scripts/lwpr_reference_model.py), written in plain numpy from that text and from the behaviour
-of the reference C library (lwpr_aux.c, v1.2), for the settings of the two cross tests of issue
-4. Clarity over speed: one sample at a time, one RF at a time, whole matrices with masks. It
+A second implementation of the LWPR update and prediction (scripts/lwpr_reference_model.py),
+written in plain numpy from the written description the project started from (LWPR.md of its
+background notes, not in this repository; docs/lwpr.md explains the same steps under the same
+letters) and from the behaviour of the reference C library (lwpr_aux.c, v1.2), for the settings
+of the two cross tests of issue 4. Clarity over speed: one sample at a time, one RF at a time, whole matrices with masks. It
 shares no code with the crate. Where it follows the C library rather than LWPR.md, and where it
 follows the crate's deliberate deviations (the leverage guard, off with --no-guard): see the
 model file's docstring.

@@ -1,9 +1,11 @@
 """The independent LWPR of scripts/lwpr_reference.py: the model alone (see that file).
 
 One output, no normalisation, Gaussian kernel, full metric with meta learning: the settings of
-the two cross tests of issue 4. Written from shared/LWPR.md and from the behaviour of the
-reference C library (lwpr_aux.c, v1.2); shares no code with the crate. Where LWPR.md and the C
-library differ or LWPR.md is silent, this follows the C library, as the crate does:
+the two cross tests of issue 4. Written from the written LWPR description of the project's
+background notes (LWPR.md, not in this repository; docs/lwpr.md explains the same steps under the
+same letters) and from the behaviour of the reference C library (lwpr_aux.c, v1.2); shares no
+code with the crate. Where LWPR.md and the C library differ or LWPR.md is silent, this follows
+the C library, as the crate does:
 - the prune rule removes the wider of the two RFs (smaller trace of D; LWPR.md says narrower);
 - a PLS direction's metric terms count only when n_data_j (1 - lambda_0) > 0.1 (lambda of the
   first direction for every j);
@@ -87,7 +89,7 @@ def project(rf, x, R):
 
 
 def update_regression(cfg, rf, x, y, w):
-    """LWPR.md (b) on the centred sample; returns the RF's prediction, e_cv of the last
+    """docs/lwpr.md (b) on the centred sample; returns the RF's prediction, e_cv of the last
     trusted direction and the residual e with the new projections."""
     n, R = cfg.n, rf.R
     # Projections and residual inputs with the old directions.
@@ -131,7 +133,7 @@ def update_regression(cfg, rf, x, y, w):
 
 
 def update_metric(cfg, rf, w, e_cv, e, x, stats):
-    """LWPR.md (d): one gradient step on M, with IDBD meta learning of its rates."""
+    """docs/lwpr.md (d): one gradient step on M, with IDBD meta learning of its rates."""
     n, R = cfg.n, rf.R
     dwdq, ddwdqdq = -0.5 * w, 0.25 * w
     ok = rf.n_data[:R] * (1.0 - rf.lam[0]) > 0.1
@@ -190,7 +192,7 @@ def update_metric(cfg, rf, w, e_cv, e, x, stats):
 
 
 def grow(cfg, rf, stats):
-    """LWPR.md (e): adds a PLS direction when the last one still halves the error."""
+    """docs/lwpr.md (e): adds a PLS direction when the last one still halves the error."""
     n, R = cfg.n, rf.R
     if R >= n:
         return
@@ -257,7 +259,7 @@ class Model:
         return yp / sw if sw > 0 else math.nan
 
     def predict(self, x, cutoff=0.001):
-        """The prediction and its confidence bound (LWPR.md, "Prediction and confidence"); 0
+        """The prediction and its confidence bound (docs/lwpr.md, "Prediction"); 0
         and NaN where no trusted RF is active."""
         yp = sw = wyy = wconf = 0.0
         for rf in self.rfs:

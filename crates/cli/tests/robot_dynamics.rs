@@ -24,7 +24,7 @@ fn dynamics_json_has_the_documented_keys_and_consistent_values() {
     for key in ["x", "J", "M", "g", "h", "tau", "qdd_forward"] {
         assert!(!v[key].is_null(), "missing {key}");
     }
-    // The published gravity check of shared/robots/sarcos7.md.
+    // The published gravity check of docs/robots.md.
     assert!((v["g"][0].as_f64().unwrap() - 6.335692).abs() < 1e-5);
     assert_eq!(v["M"].as_array().unwrap().len(), 7);
     assert_eq!(v["J"].as_array().unwrap().len(), 3);

@@ -11,7 +11,7 @@ pub enum Law {
     /// Eq. 4: `u = Jᵀ (J M⁻¹ Jᵀ)⁻¹ b`, i.e. eq. 7 with `N = M⁻¹` and `u0 = 0` (no null-space
     /// control: the posture drifts).
     Eq4,
-    /// Eq. 7 (corrected, DESIGN.md §3) with the metric `N` and the nominal `u0`.
+    /// Eq. 7 (corrected: the crate README, "Choices") with the metric `N` and the nominal `u0`.
     #[default]
     Eq7,
 }

@@ -1,6 +1,6 @@
 //! Task-space trajectories, reference dynamics (paper eq. 2), the nominal behaviour `u0` (eq. 6
 //! plus gravity compensation) and the analytical operational space controllers (eq. 4 and the
-//! corrected eq. 7 of DESIGN.md §3) with a damped pseudo-inverse, model errors, and the
+//! corrected eq. 7 of the crate README's "Choices") with a damped pseudo-inverse, model errors, and the
 //! closed-loop driver that runs a controller on a robot and measures the tracking.
 //!
 //! ```
@@ -15,6 +15,11 @@
 //! let run = run_closed_loop(&mut sim, &mut ctrl, &traj, model.task_axes(), 8.0).unwrap();
 //! assert!(run.metrics.tracking_rms_mm < 0.5);
 //! ```
+
+// The README's example compiles and runs (`cargo test --doc`).
+#[doc = include_str!("../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;
 
 mod closed_loop;
 mod config;

@@ -1,4 +1,4 @@
-//! The nominal behaviour `u0` (paper eq. 6 plus gravity compensation, DESIGN.md §3):
+//! The nominal behaviour `u0` (paper eq. 6 plus gravity compensation, `docs/learner.md`, "Conventions and the target"):
 //! `u0 = g(q) − K_Dq q̇ − K_Pq (q − q_rest)`.
 
 use osrl_dynamics::Model;

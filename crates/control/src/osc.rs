@@ -1,4 +1,4 @@
-//! The analytical operational space controllers: eq. 7 (corrected, DESIGN.md §3) for any
+//! The analytical operational space controllers: eq. 7 (corrected: the crate README, "Choices") for any
 //! positive-definite metric `N`, and eq. 4 as its special case `N = M⁻¹`, `u0 = 0`.
 
 use crate::config::{Law, MetricKind, OscConfig};

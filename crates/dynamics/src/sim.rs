@@ -1,4 +1,4 @@
-//! The simulated robot and the measurement boundary the learner sees (DESIGN.md §2).
+//! The simulated robot and the measurement boundary the learner sees (`docs/architecture.md`, "The measurement boundary").
 //!
 //! A learner holds a `&mut dyn Robot` (or `impl Robot`): it can send torques and read
 //! [`Measurement`]s, nothing else — the trait exposes no model, so the compiler keeps the learner
@@ -61,7 +61,7 @@ pub enum Integrator {
     SemiImplicitEuler,
 }
 
-/// How the simulator integrates joint friction (`crate::sim_friction` explains the scheme).
+/// How the simulator integrates joint friction (`sim/friction.rs` explains the scheme).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum FrictionScheme {
@@ -166,12 +166,10 @@ pub struct SimStats {
     pub implicit_friction: u64,
 }
 
-#[path = "sim_friction.rs"]
-mod sim_friction;
-#[path = "sim_robot.rs"]
-mod sim_robot;
-pub use sim_friction::STIFF_LIMIT;
-pub use sim_robot::SimRobot;
+mod friction;
+mod robot;
+pub use friction::STIFF_LIMIT;
+pub use robot::SimRobot;
 
 /// Gaussian noise with standard deviation `std` (0 draws nothing, keeping streams aligned).
 #[inline]

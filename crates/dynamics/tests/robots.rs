@@ -1,4 +1,4 @@
-//! The built-in robots against the published checks of `shared/robots/sarcos7.md`.
+//! The built-in robots against the published checks of `docs/robots.md`.
 
 use osrl_dynamics::{crba, forward_kinematics, gravity, robots};
 

@@ -1,6 +1,6 @@
 //! `osrl bench lwpr`: the LWPR benchmarks of issue 4, as one JSON object.
 //!
-//! - `cross_2d`: the reference library's cross test (`shared/LWPR.md`): 500 noisy points, 20
+//! - `cross_2d`: the reference library's cross test (`docs/lwpr.md`, "The cross tests"): 500 noisy points, 20
 //!   epochs (`--cross2-epochs`), tested on the 41×41 grid, over `--seeds` seeds from
 //!   `--first-seed` on;
 //! - `cross_21d`: the same points embedded in 21-D by a random rotation (or, with
@@ -51,7 +51,7 @@ enum Test {
 enum Prune {
     /// The reference C library's rule (remove the wider of two overlapping RFs).
     Wider,
-    /// `shared/LWPR.md`'s rule (remove the narrower).
+    /// The written descriptions' rule (remove the narrower; crates/lwpr/README.md, "Choices").
     Narrower,
 }
 

@@ -2,7 +2,7 @@
 //! test a saved model.
 //!
 //! CSV files have a header row; the first K columns are inputs, the rest outputs (see
-//! `osrl_report::csv::Table`). The config is TOML with the parameter names of `shared/LWPR.md` in
+//! `osrl_report::csv::Table`). The config is TOML with the parameter names of `docs/lwpr.md` in
 //! snake case (see `lwpr::LwprConfig`); unknown keys are an error. `norm_in`/`norm_out` may be
 //! `"std"`: the training data's standard deviation per column.
 
@@ -62,7 +62,7 @@ struct FitArgs {
     /// meta, meta_rate, penalty, w_gen, w_prune, prune_rule ("wider"|"narrower"), init_lambda,
     /// final_lambda, tau_lambda, init_s2, add_threshold, kernel ("gaussian"|"bisquare"),
     /// norm_in and norm_out (a number, a list, or "std": the training data's standard
-    /// deviation), cutoff, shared_rfs, kernel_dims, regression_dims. Defaults: shared/LWPR.md.
+    /// deviation), cutoff, shared_rfs, kernel_dims, regression_dims. Defaults: docs/lwpr.md.
     #[arg(long, verbatim_doc_comment)]
     config: Option<PathBuf>,
     /// Passes over the training data, each in a fresh shuffled order.

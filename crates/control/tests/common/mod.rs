@@ -76,7 +76,7 @@ pub fn sqrtm(n: &DMatrix<f64>) -> DMatrix<f64> {
     &e.eigenvectors * d * e.eigenvectors.transpose()
 }
 
-/// Eq. 7 exactly as printed in DESIGN.md §3, with the symmetric square root and nalgebra's own
+/// Eq. 7 in its printed form (corrected; the crate README, "Choices"), with the symmetric square root and nalgebra's own
 /// inverses: `u* = N^(−1/2) A⁺ b + N^(−1/2)(I − A⁺A) N^(1/2) u0`, `A = J M⁻¹ N^(−1/2)`.
 pub fn eq7_literal(
     d: &Dyn,

@@ -1,4 +1,4 @@
-//! `sarcos7`: the SARCOS Master Arm with its identified parameters (`shared/robots/sarcos7.md`).
+//! `sarcos7`: the SARCOS Master Arm with its identified parameters (`docs/robots.md`).
 
 use crate::inertia::Inertia;
 use crate::model::{Friction, JointKind, JointLimits, Link, Model, ModelSpec, GRAVITY};

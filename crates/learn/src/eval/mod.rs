@@ -5,6 +5,7 @@
 //! This is the one place that reads a robot model — the simulator's, to compute `u*` — and it
 //! sits outside the learner: the learner only receives the commands' measurements.
 
+mod result;
 mod true_gain;
 mod window;
 
@@ -15,80 +16,11 @@ use osrl_control::{
     Target, TaskController, TaskGains, Trajectory,
 };
 use osrl_dynamics::{Measurement, Robot, SimConfig, SimRobot};
-use serde::{Deserialize, Serialize};
 use std::ops::ControlFlow;
+
+pub use result::{EvalResult, EvalSeries};
 use true_gain::TrueGain;
 use window::Acc;
-
-/// Metrics of one evaluation run (definitions of issue 6).
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-pub struct EvalResult {
-    /// RMS of `‖x − x_d‖` over whole periods after the first (mm).
-    pub tracking_rms_mm: f64,
-    pub tracking_max_mm: f64,
-    /// Mean `‖u − u*‖²` over the summed per-joint variance of `u*`.
-    pub command_nmse: f64,
-    /// Mean `‖u − u0‖²` of the learned commands over that of `u*`.
-    pub command_cost_ratio: f64,
-    /// The part of `command_nmse` in the null space of the true `A = J M⁻¹` (`‖(I − A⁺A)(u −
-    /// u*)‖²`, same normalisation): the redundancy resolution's share of the error.
-    #[serde(default)]
-    pub command_nmse_null: f64,
-    /// The learned nominal behaviour's error, `‖û0 − u0‖²` (learned `ĝ` vs true `g`), with the
-    /// same normalisation: a floor of `command_nmse` set by the gravity model.
-    #[serde(default)]
-    pub nominal_nmse: f64,
-    /// Its part in the null space of the true `A` (the part the task cannot correct).
-    #[serde(default)]
-    pub nominal_nmse_null: f64,
-    /// Mean relative error `‖Â − A‖_F / ‖A‖_F` of the learner's blended input gain `Â = ∂ẍ/∂u`
-    /// against the true `A = J M⁻¹` (steps where the learner has one).
-    #[serde(default)]
-    pub gain_error: f64,
-    /// The scales behind the ratios: summed per-joint variance of `u*` (N²·m²) and mean
-    /// `‖u* − u0‖²` (N²·m²).
-    #[serde(default)]
-    pub u_star_variance: f64,
-    #[serde(default)]
-    pub u_star_cost: f64,
-    /// Share of steps where no trained local controller was active (fallback to `u0`).
-    pub fallback_share: f64,
-    /// Largest change of the command between consecutive steps (N·m), learned and analytical.
-    pub max_command_step: f64,
-    pub max_command_step_analytical: f64,
-    /// Whether the run was cut short by a tracking error above 0.2 m, or never reached the
-    /// evaluated window; the metrics then cover the steps before (all steps if the window was
-    /// never reached).
-    pub diverged: bool,
-}
-
-/// The time series of one evaluation (for plots).
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-pub struct EvalSeries {
-    pub t: Vec<f64>,
-    /// Task position, desired and actual (row-major, `m` per step).
-    pub x_d: Vec<f64>,
-    pub x: Vec<f64>,
-    /// Learned and optimal commands (row-major, `n` per step).
-    pub u: Vec<f64>,
-    pub u_star: Vec<f64>,
-    pub q: Vec<f64>,
-    /// Wall time of each learned command (s): what a controller command costs on this model.
-    pub command_seconds: Vec<f64>,
-}
-
-impl EvalSeries {
-    /// The `p`-quantile (0–1, nearest rank) of the command wall times in µs; `None` if none.
-    pub fn command_us_quantile(&self, p: f64) -> Option<f64> {
-        let mut v = self.command_seconds.clone();
-        if v.is_empty() {
-            return None;
-        }
-        v.sort_by(f64::total_cmp);
-        let k = ((v.len() - 1) as f64 * p.clamp(0.0, 1.0)).round() as usize;
-        Some(v[k] * 1e6)
-    }
-}
 
 /// Evaluation on its own simulated robot with the true model.
 pub struct Evaluator {
@@ -301,22 +233,19 @@ impl<'a> Comparison<'a> {
     }
 }
 
-impl StepObserver<EvalController<'_>> for Comparison<'_> {
-    fn observe(
-        &mut self,
-        ctrl: &mut EvalController,
-        step: &StepView,
-    ) -> osrl_control::Result<ControlFlow<()>> {
-        let (meas, u) = (step.meas, step.u);
-        let (q, qd) = (meas.q.as_slice(), meas.qd.as_slice());
-        if let Err(e) = self.optimum(meas, &ctrl.xdd_ref) {
-            return Err(keep(&mut self.error, e));
-        }
-        let learner = &mut *ctrl.learner;
-        if let Err(e) = learner.nominal(q, qd, &mut self.u0_hat) {
-            return Err(keep(&mut self.error, e));
-        }
-        // The error split against the true B = J M⁻¹ at this state (0 where B is singular).
+/// One step's error split against the true `A = J M⁻¹` (0 where `A` is singular): the parts of
+/// `u − u*` and of `û0 − u0` in its null space, `‖û0 − u0‖²`, and the error of `Â` (if any).
+struct Split {
+    null2: f64,
+    nom_null2: f64,
+    nom2: f64,
+    gain_err: Option<f64>,
+}
+
+impl Comparison<'_> {
+    /// The error split of the learned command `u` at `(q, q̇)` (after [`Comparison::optimum`]).
+    fn split(&mut self, learner: &mut Learner, q: &[f64], qd: &[f64], u: &[f64]) -> Result<Split> {
+        learner.nominal(q, qd, &mut self.u0_hat)?;
         let truth = TrueGain::new(self.osc.data(), &self.axes);
         let null2 = truth
             .as_ref()
@@ -324,10 +253,7 @@ impl StepObserver<EvalController<'_>> for Comparison<'_> {
         let nom_null2 = truth
             .as_ref()
             .map_or(0.0, |t| t.null_part2(&self.u0_hat, &self.u0));
-        let has_gain = match learner.input_gain(q, qd, &mut self.a_hat) {
-            Ok(known) => known,
-            Err(e) => return Err(keep(&mut self.error, e)),
-        };
+        let has_gain = learner.input_gain(q, qd, &mut self.a_hat)?;
         let gain_err = truth
             .filter(|_| has_gain)
             .map(|t| t.gain_error(&self.a_hat));
@@ -337,6 +263,46 @@ impl StepObserver<EvalController<'_>> for Comparison<'_> {
             .zip(&self.u0)
             .map(|(a, b)| (a - b).powi(2))
             .sum();
+        Ok(Split {
+            null2,
+            nom_null2,
+            nom2,
+            gain_err,
+        })
+    }
+
+    /// Adds one step to the window (from step `warm` on) and to the whole run.
+    fn accumulate(&mut self, k: usize, e: f64, fallback: bool, u: &[f64], split: &Split) {
+        for (acc, on) in [(&mut self.window, k >= self.warm), (&mut self.all, true)] {
+            if on {
+                acc.add(e, fallback, u, &self.u_star, &self.u0);
+                acc.null2 += split.null2;
+                acc.nom2 += split.nom2;
+                acc.nom_null2 += split.nom_null2;
+                if let Some(g) = split.gain_err {
+                    acc.gain_err += g;
+                    acc.gain_count += 1;
+                }
+            }
+        }
+    }
+}
+
+impl StepObserver<EvalController<'_>> for Comparison<'_> {
+    fn observe(
+        &mut self,
+        ctrl: &mut EvalController,
+        step: &StepView,
+    ) -> osrl_control::Result<ControlFlow<()>> {
+        let (meas, u) = (step.meas, step.u);
+        let (q, qd) = (meas.q.as_slice(), meas.qd.as_slice());
+        let split = self
+            .optimum(meas, &ctrl.xdd_ref)
+            .and_then(|()| self.split(ctrl.learner, q, qd, u));
+        let split = match split {
+            Ok(split) => split,
+            Err(e) => return Err(keep(&mut self.error, e)),
+        };
         let e = osrl_control::task_error(step.target, &self.axes, meas.x.as_slice());
         if step.k > 0 {
             self.step_l = self.step_l.max(max_abs_diff(&self.prev_u, u));
@@ -346,21 +312,7 @@ impl StepObserver<EvalController<'_>> for Comparison<'_> {
         self.prev_us.copy_from_slice(&self.u_star);
         self.record(step, ctrl.seconds);
         let fallback = ctrl.source == CommandSource::Fallback;
-        for (acc, on) in [
-            (&mut self.window, step.k >= self.warm),
-            (&mut self.all, true),
-        ] {
-            if on {
-                acc.add(e, fallback, u, &self.u_star, &self.u0);
-                acc.null2 += null2;
-                acc.nom2 += nom2;
-                acc.nom_null2 += nom_null2;
-                if let Some(g) = gain_err {
-                    acc.gain_err += g;
-                    acc.gain_count += 1;
-                }
-            }
-        }
+        self.accumulate(step.k, e, fallback, u, &split);
         Ok(if e > 0.2 {
             ControlFlow::Break(())
         } else {

@@ -1,6 +1,6 @@
 //! The sums of an evaluation window and the metrics they give (`docs/learner.md`, "Evaluation").
 
-use super::EvalResult;
+use super::result::EvalResult;
 
 /// Sums of one evaluation window.
 pub(super) struct Acc {

@@ -82,7 +82,7 @@ pub(crate) fn add(
 
 /// Step 5, when the two nearest RFs (`top`) both activate above `w_prune`: removes one of
 /// them. The C library v1.2 removes the wider of the two (smaller trace of `D`; on a tie the
-/// second); LWPR.md and the library's Matlab code the narrower (on a tie the first). Returns
+/// second); the written descriptions and the library's Matlab code the narrower (on a tie the first). Returns
 /// whether an RF was pruned.
 #[inline(always)]
 pub(crate) fn prune(p: &Params, sub: &mut SubModel, cx: SubCtx<'_>, top: &Top2) -> bool {

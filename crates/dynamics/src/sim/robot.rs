@@ -1,6 +1,6 @@
 //! [`SimRobot`]: fixed control period, finer integration inside, limits, noise, divergence check.
 
-use super::sim_friction::{FrictionStep, STIFF_LIMIT};
+use super::friction::{FrictionStep, STIFF_LIMIT};
 use super::{
     new_rng, noise, task_acceleration, FrictionScheme, Integrator, Measurement, Robot, SimConfig,
     SimStats,
