@@ -28,6 +28,12 @@ fn train_eval_simulate_round_trip() {
     ]);
     assert!(ok, "{err}");
     let t = last_json(&out);
+    // With --json, stdout is the JSON document alone (the summary goes to stderr).
+    assert!(
+        serde_json::from_str::<serde_json::Value>(out.trim()).is_ok(),
+        "{out}"
+    );
+    assert!(err.contains("local models"), "{err}");
     for key in [
         "n_local_models",
         "sim_training_minutes",
@@ -41,6 +47,9 @@ fn train_eval_simulate_round_trip() {
         "minutes_to_1mm",
         "minutes_to_nmse_0.05",
         "aborted_episodes",
+        "braked_episodes",
+        "clipped_on_policy",
+        "command_step_curve",
         "counters",
     ] {
         assert!(t.get(key).is_some(), "train JSON lacks {key}: {t}");

@@ -8,6 +8,12 @@ use nalgebra::DMatrix;
 use rwr::{OnlineRwr, RwrConfig};
 use std::collections::BTreeMap;
 
+/// Confidence `c ∈ [0, 1]` of a controller whose last M-step had effective sample size `ess`:
+/// 0 up to half of `trained_ess`, 1 from 1.5 times it, linear in between.
+pub(crate) fn confidence(ess: f64, trained_ess: f64) -> f64 {
+    (ess / trained_ess - 0.5).clamp(0.0, 1.0)
+}
+
 /// One local controller and its bookkeeping.
 #[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct Local {
@@ -156,7 +162,7 @@ impl LocalControllers {
             let Some(l) = self.map.get(&a.id) else {
                 continue;
             };
-            let w = crate::learner::confidence(l.ess, trained_ess) * a.w;
+            let w = confidence(l.ess, trained_ess) * a.w;
             if !(w > 0.0) {
                 continue;
             }
@@ -205,7 +211,7 @@ impl LocalControllers {
     pub fn n_trained(&self, trained_ess: f64) -> usize {
         self.map
             .values()
-            .filter(|l| crate::learner::confidence(l.ess, trained_ess) > 0.0)
+            .filter(|l| confidence(l.ess, trained_ess) > 0.0)
             .count()
     }
 

@@ -6,6 +6,7 @@ use super::exploration::explore;
 use super::nominal::nominal_into;
 use super::{Learner, State};
 use crate::error::{LearnError, Result};
+use crate::local::confidence;
 use rand::Rng;
 
 /// What produced a command.
@@ -29,12 +30,6 @@ struct Blend {
     sum_w: f64,
     sum_sigma: f64,
     source: CommandSource,
-}
-
-/// Confidence `c ∈ [0, 1]` of a controller whose last M-step had effective sample size `ess`:
-/// 0 up to half of `trained_ess`, 1 from 1.5 times it, linear in between.
-pub(crate) fn confidence(ess: f64, trained_ess: f64) -> f64 {
-    (ess / trained_ess - 0.5).clamp(0.0, 1.0)
 }
 
 impl Learner {
@@ -310,5 +305,97 @@ mod tests {
             .unwrap();
         assert!(u.iter().all(|v| v.abs() <= 0.1), "{u:?}");
         assert_eq!(learner.stats().clipped, before.clipped + 1);
+    }
+
+    /// One field trained by hand (a known `β`, confident) in a fixture learner with
+    /// `cfg`, and its centre in `(q, q̇)`.
+    fn one_trained_field(mut cfg: crate::LearnerConfig) -> (crate::Learner, Vec<f64>) {
+        cfg.controllers.trained_ess = 1e8;
+        let (mut learner, _, _) = fixture::ready(cfg, 200, 0);
+        let p = learner.features.controller_len();
+        let beta = DMatrix::from_fn(p, 3, |r, c| 0.02 * (r as f64 + 1.0) * (c as f64 - 1.0));
+        let rwr_cfg = learner.cfg.controllers.rwr.clone();
+        let models = fixture::models(&mut learner);
+        let local = models.locals.map.values_mut().next().unwrap();
+        local.rwr = OnlineRwr::with_theta(beta, rwr_cfg).unwrap();
+        local.ess = 1e9;
+        let center = local.center.clone();
+        (learner, center)
+    }
+
+    /// The largest command change along a straight line in `q` from 0.5 rad away to the
+    /// trained field's centre, in `steps` equal increments (no exploration, no rate limit).
+    fn largest_change_into_the_field(steps: usize) -> (f64, Vec<CommandSource>) {
+        let mut cfg = fixture::config();
+        cfg.guards.torque_rate_limit = f64::INFINITY;
+        let (mut learner, c) = one_trained_field(cfg);
+        let (q0, vd) = (&c[..3], c[3..].to_vec());
+        let (xdd, mut prev, mut u) = ([0.3, -0.2], None::<[f64; 3]>, [0.0; 3]);
+        let (mut largest, mut sources) = (0.0f64, Vec::new());
+        for k in 0..=steps {
+            let s = 0.5 * (1.0 - k as f64 / steps as f64);
+            let q: Vec<f64> = q0.iter().map(|v| v + s).collect();
+            let src = learner
+                .command::<rand_chacha::ChaCha8Rng>(&q, &vd, &xdd, None, &mut u)
+                .unwrap();
+            if sources.last() != Some(&src) {
+                sources.push(src);
+            }
+            if let Some(p) = prev {
+                largest = largest.max(crate::eval::max_abs_diff(&p, &u));
+            }
+            prev = Some(u);
+        }
+        (largest, sources)
+    }
+
+    /// An untrained region falls back smoothly: moving into a trained field from where no field
+    /// is near, the command goes from `u0` (fallback) through the support-scaled blend
+    /// (extrapolated) to the field's own (learned) without a jump — with four times finer
+    /// increments, the largest change shrinks about fourfold (a jump would stay).
+    #[test]
+    fn a_field_joins_the_blend_without_a_step() {
+        let (coarse, sources) = largest_change_into_the_field(500);
+        let (fine, _) = largest_change_into_the_field(2000);
+        assert_eq!(
+            sources,
+            [
+                CommandSource::Fallback,
+                CommandSource::Extrapolated,
+                CommandSource::Learned
+            ]
+        );
+        assert!(fine < 0.35 * coarse, "{fine} vs {coarse}: a step");
+    }
+
+    /// With exploration, consecutive commands never change by more than the torque-rate limit
+    /// times the period, and the limiter counts the commands it held.
+    #[test]
+    fn exploring_commands_stay_within_the_torque_rate_limit() {
+        use rand::SeedableRng;
+        let mut cfg = fixture::config();
+        cfg.guards.torque_rate_limit = 50.0;
+        cfg.exploration.correlation_time = 0.0; // white noise: the worst case for the limit
+        let (mut learner, c) = one_trained_field(cfg);
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+        let (q, vd) = (c[..3].to_vec(), c[3..].to_vec());
+        let (mut prev, mut u) = (None::<[f64; 3]>, [0.0; 3]);
+        let step = 50.0 * 0.002;
+        learner.start_episode(None);
+        let before = learner.stats().rate_limited;
+        for _ in 0..2000 {
+            learner
+                .command(&q, &vd, &[0.1, 0.0], Some(&mut rng), &mut u)
+                .unwrap();
+            if let Some(p) = prev {
+                let d = crate::eval::max_abs_diff(&p, &u);
+                assert!(d <= step * (1.0 + 1e-12), "{d} > {step}");
+            }
+            prev = Some(u);
+        }
+        assert!(
+            learner.stats().rate_limited > before,
+            "the limit never acted"
+        );
     }
 }

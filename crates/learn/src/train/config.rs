@@ -90,6 +90,9 @@ pub struct TrainConfig {
     /// data only, takes over from the PD hold slowly while it learns from its first on-policy
     /// samples. Default 5.
     pub first_switch_seconds: f64,
+    /// The same after an episode braked or aborted on its task error (s): short, so the PD
+    /// return home takes over before the error grows. Default 0.05.
+    pub brake_switch_seconds: f64,
     /// The curriculum and the path clock of the on-policy episodes.
     pub curriculum: super::CurriculumConfig,
     /// Seed of the exploration and babbling noise. Default 0.
@@ -111,6 +114,7 @@ impl Default for TrainConfig {
             explore: true,
             switch_seconds: 0.25,
             first_switch_seconds: 5.0,
+            brake_switch_seconds: 0.05,
             curriculum: super::CurriculumConfig::default(),
             seed: 0,
         }
@@ -148,6 +152,10 @@ impl TrainConfig {
             (
                 "first_switch_seconds",
                 finite_nonneg(self.first_switch_seconds),
+            ),
+            (
+                "brake_switch_seconds",
+                finite_nonneg(self.brake_switch_seconds),
             ),
         ];
         match checks.iter().find(|(_, ok)| !ok) {

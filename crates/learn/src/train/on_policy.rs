@@ -44,53 +44,57 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
     fn return_home(&mut self) -> Result<()> {
         self.learning = self.cfg.learn_on_policy && self.cfg.learn_returning_home;
         let (home, limit) = (self.home.clone(), self.total_steps);
-        self.begin_fade(self.cfg.switch_seconds);
+        let braked = self
+            .progress
+            .last_episode
+            .is_some_and(|e| e.braked || e.aborted);
+        self.begin_fade(if braked {
+            self.cfg.brake_switch_seconds
+        } else {
+            self.cfg.switch_seconds
+        });
         self.pd_move(&home, 2.0, 1.0, 0.0, limit)
     }
 
     /// One episode along the path from its start at the curriculum's stage: commands with
-    /// exploration, learning from each transition, stopped (aborted) when the task error exceeds
-    /// `reset_error`; the curriculum moves on by its outcome.
+    /// exploration, learning from each transition, braked when the task error passes
+    /// `brake_error`; the curriculum moves on by its outcome.
     fn episode(&mut self) -> Result<()> {
         self.learning = self.cfg.learn_on_policy;
         self.progress.episodes += 1;
-        let cc = &self.cfg.curriculum;
         let stage = self.curriculum.current();
-        let mut path = EpisodePath::new(
-            self.traj,
-            stage,
-            self.cfg.episode_seconds,
-            cc,
-            &mut self.rng,
-        );
-        let mut xdd_ref = vec![0.0; self.axes.len()];
+        let (cfg, rng) = (self.cfg, &mut self.rng);
+        let path = EpisodePath::new(self.traj, stage, cfg.episode_seconds, &cfg.curriculum, rng);
         // The fade from the PD hold takes the switch; the learner's own limiter starts afresh.
         self.learner.start_episode(None);
         let first = self.progress.episodes == 1;
-        let c = &self.cfg;
         self.begin_fade(if first {
-            c.first_switch_seconds
+            cfg.first_switch_seconds
         } else {
-            c.switch_seconds
+            cfg.switch_seconds
         });
+        let report = self.drive_path(&path, stage)?;
+        let failed = report.aborted || report.braked;
+        let cc = &cfg.curriculum;
+        self.curriculum
+            .after_episode(failed, report.rms_error, cc.advance_error);
+        self.progress.stage = self.curriculum.stage;
+        self.progress.last_episode = Some(report);
+        Ok(())
+    }
+
+    /// Tracks `path` to its end (or the run's); stops early when the task error passes
+    /// `brake_error` or a command would jump by more than `brake_step` (braked: that command is
+    /// not sent, and the return home takes over within `brake_switch_seconds`), or when the
+    /// error passes `reset_error` (aborted).
+    fn drive_path(&mut self, path: &EpisodePath, stage: [f64; 2]) -> Result<EpisodeReport> {
+        let cc = &self.cfg.curriculum;
+        let mut xdd_ref = vec![0.0; self.axes.len()];
         let (mut e2, mut count, mut aborted, mut braked) = (0.0, 0u64, false, false);
-        let mut k = 0u64;
-        while (k as f64) < (path.seconds / self.dt).round() && !self.done() {
-            let t = k as f64 * self.dt;
-            k += 1;
-            let prev = self.prev.clone();
-            let target = path.sample(self.traj, t);
-            let (x, xd) = (prev.x.as_slice(), prev.xd.as_slice());
-            reference_acceleration(&self.cfg.gains, &target, self.axes, x, xd, &mut xdd_ref);
-            let rng = self.cfg.explore.then_some(&mut self.rng);
-            let (q, qd) = (prev.q.as_slice(), prev.qd.as_slice());
-            self.learner.command(q, qd, &xdd_ref, rng, &mut self.u)?;
-            self.step()?;
-            let e = task_error(
-                &path.sample(self.traj, t + self.dt),
-                self.axes,
-                self.prev.x.as_slice(),
-            );
+        (self.jump_guard, self.jumped) = (true, false);
+        while (count as f64) < (path.seconds / self.dt).round() && !self.done() {
+            let t = count as f64 * self.dt;
+            let e = self.track(path, t, &mut xdd_ref)?;
             e2 += e * e;
             count += 1;
             if e > self.cfg.reset_error {
@@ -98,23 +102,34 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
                 aborted = true;
                 break;
             }
-            if e > cc.brake_error && !braked {
-                path.brake(t + self.dt, cc);
+            if e > cc.brake_error || self.jumped {
                 self.progress.braked_episodes += 1;
                 braked = true;
+                break;
             }
         }
-        let rms = (e2 / count.max(1) as f64).sqrt();
-        self.curriculum
-            .after_episode(aborted || braked, rms, cc.advance_error);
-        self.progress.stage = self.curriculum.stage;
-        self.progress.last_episode = Some(EpisodeReport {
+        self.jump_guard = false;
+        Ok(EpisodeReport {
             seconds: count as f64 * self.dt,
             aborted,
             braked,
-            rms_error: rms,
+            rms_error: (e2 / count.max(1) as f64).sqrt(),
             stage,
-        });
-        Ok(())
+        })
+    }
+
+    /// One control period on `path` at episode time `t`: eq. 2's reference, the learned command
+    /// with exploration, the step; returns the task error after it (m).
+    fn track(&mut self, path: &EpisodePath, t: f64, xdd_ref: &mut [f64]) -> Result<f64> {
+        let target = path.sample(self.traj, t);
+        let prev = &self.prev;
+        let (x, xd) = (prev.x.as_slice(), prev.xd.as_slice());
+        reference_acceleration(&self.cfg.gains, &target, self.axes, x, xd, xdd_ref);
+        let rng = self.cfg.explore.then_some(&mut self.rng);
+        let (q, qd) = (prev.q.as_slice(), prev.qd.as_slice());
+        self.learner.command(q, qd, xdd_ref, rng, &mut self.u)?;
+        self.step()?;
+        let after = path.sample(self.traj, t + self.dt);
+        Ok(task_error(&after, self.axes, self.prev.x.as_slice()))
     }
 }

@@ -58,6 +58,18 @@ impl StepMonitor {
         self.has_last = true;
     }
 
+    /// Whether `u` moves a joint by more than `limit` (N·m) from the last command sent.
+    pub fn jump(&self, u: &[f64], limit: f64) -> bool {
+        self.has_last && max_abs_diff(&self.last, u) > limit
+    }
+
+    /// The last command sent, into `u` (unchanged if none was).
+    pub fn repeat_last(&self, u: &mut [f64]) {
+        if self.has_last {
+            u.copy_from_slice(&self.last);
+        }
+    }
+
     /// After control step `steps` of the run (`per_min` steps a minute): closes a bin at its end.
     pub fn tick(&mut self, steps: u64, per_min: u64) {
         if steps.is_multiple_of(self.bin_steps) {

@@ -103,6 +103,10 @@ pub struct Trainer<'a, R: Robot + ?Sized> {
     pub(super) clipped_before: u64,
     /// On-policy commands of the driver (fades, returns home) clipped to the torque limits.
     driver_clipped: u64,
+    /// Whether a command that jumps by more than `curriculum.brake_step` from the last one is
+    /// refused (during episodes), and whether one was since the flag was last cleared.
+    pub(super) jump_guard: bool,
+    pub(super) jumped: bool,
     /// The torque-rate limit on the driver's own (PD) commands, and how often it acted.
     pub(super) rate: RateLimiter,
     pub(super) rate_limited: u64,
@@ -177,6 +181,8 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
             steps_seen: StepMonitor::new(n, dt),
             clipped_before: 0,
             driver_clipped: 0,
+            jump_guard: false,
+            jumped: false,
             rate,
             rate_limited: 0,
             babble_noise: vec![0.0; n],
@@ -239,6 +245,15 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
         }
         if clipped && self.progress.phase == Phase::OnPolicy {
             self.driver_clipped += 1;
+        }
+        if self.jump_guard
+            && self
+                .steps_seen
+                .jump(&self.u, self.cfg.curriculum.brake_step)
+        {
+            // Refused: the previous command again, and the episode brakes.
+            self.steps_seen.repeat_last(&mut self.u);
+            self.jumped = true;
         }
         if self.rate.apply(&mut self.u) {
             self.rate_limited += 1;

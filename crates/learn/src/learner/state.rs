@@ -1,0 +1,200 @@
+//! The learner's state: its configuration, dimensions, feature layouts, the warm-up or its
+//! models, counters, and the memory of the command (noise processes, rate limiter).
+
+use super::exploration::Noise;
+use super::stats::Scratch;
+use super::{Features, LearnerStats, Models, RateLimiter};
+use crate::config::LearnerConfig;
+use crate::error::{LearnError, Result};
+use crate::forward::ForwardModel;
+use crate::gravity::GravityModel;
+use osrl_dynamics::Measurement;
+
+/// What the learner has: measurements of the warm-up, or its models.
+#[derive(Clone, Debug)]
+pub(crate) enum State {
+    /// Transitions collected until `guards.warmup_samples`; their scales size the models.
+    WarmUp(Vec<Measurement>),
+    /// The models, made from the warm-up and trained since.
+    Ready(Box<Models>),
+}
+
+impl State {
+    pub fn models(&self) -> Option<&Models> {
+        match self {
+            State::Ready(m) => Some(m),
+            State::WarmUp(_) => None,
+        }
+    }
+    pub fn models_mut(&mut self) -> Option<&mut Models> {
+        match self {
+            State::Ready(m) => Some(m),
+            State::WarmUp(_) => None,
+        }
+    }
+}
+
+/// The learned operational space controller's state (paper section IV).
+#[derive(Clone, Debug)]
+pub struct Learner {
+    pub(crate) cfg: LearnerConfig,
+    pub(crate) n: usize,
+    pub(crate) m: usize,
+    /// Control period (s).
+    pub(crate) dt: f64,
+    pub(crate) features: Features,
+    pub(crate) state: State,
+    pub(crate) stats: LearnerStats,
+    /// `ĝ` no longer learns (see [`Learner::freeze_gravity`]).
+    pub(crate) gravity_frozen: bool,
+    pub(crate) ws: Scratch,
+    /// The exploration noise processes and the torque-rate limiter: the memory of the command
+    /// from one control period to the next (reset by [`Learner::start_episode`]).
+    pub(crate) noise: Noise,
+    pub(crate) rate: RateLimiter,
+}
+
+impl Learner {
+    /// A learner for a robot with `n` joints and an `m`-dimensional task, controlled every `dt`
+    /// seconds.
+    ///
+    /// # Errors
+    /// [`LearnError::InvalidConfig`] on an invalid config or dimensions.
+    pub fn new(n: usize, m: usize, dt: f64, cfg: LearnerConfig) -> Result<Self> {
+        cfg.validate(n)?;
+        if m == 0 || m > n || !(dt > 0.0 && dt.is_finite()) {
+            return Err(LearnError::InvalidConfig(format!(
+                "need 0 < m ≤ n and a finite dt > 0 (n = {n}, m = {m}, dt = {dt})"
+            )));
+        }
+        let x = &cfg.experimental;
+        let features = Features::new(n, m, x.position_features, x.dynamics_bilinear);
+        let ws = Scratch::new(n, m, features.controller_len(), features.dynamics_len());
+        let noise = Noise::new(
+            n,
+            cfg.exploration.process,
+            cfg.exploration.correlation_time,
+            dt,
+        );
+        let rate = RateLimiter::new(n, cfg.guards.torque_rate_limit, dt);
+        Ok(Self {
+            noise,
+            rate,
+            state: State::WarmUp(Vec::with_capacity(cfg.guards.warmup_samples + 1)),
+            cfg,
+            n,
+            m,
+            dt,
+            features,
+            stats: LearnerStats::default(),
+            gravity_frozen: false,
+            ws,
+        })
+    }
+
+    /// Starts a new sequence of commands: the command last sent to the robot (`None`: unknown,
+    /// the next command is not rate limited) and the exploration noise back at 0.
+    pub fn start_episode(&mut self, last_sent: Option<&[f64]>) {
+        self.rate.reset(last_sent);
+        self.noise.reset();
+    }
+
+    pub fn config(&self) -> &LearnerConfig {
+        &self.cfg
+    }
+
+    /// Sets the torque limits of the commands (N·m, one per joint; empty: none), e.g. on a
+    /// controller saved without them.
+    ///
+    /// # Errors
+    /// A wrong count or a limit that is not finite and > 0; nothing is changed.
+    pub fn set_torque_limits(&mut self, tau_max: &[f64]) -> Result<()> {
+        let mut cfg = self.cfg.clone();
+        cfg.guards.torque_limits = tau_max.to_vec();
+        cfg.validate(self.n)?;
+        self.cfg = cfg;
+        Ok(())
+    }
+
+    pub fn stats(&self) -> LearnerStats {
+        self.stats
+    }
+
+    /// Number of joints and task dimensions.
+    pub fn dims(&self) -> (usize, usize) {
+        (self.n, self.m)
+    }
+
+    /// The control period the learner was made for (s).
+    pub fn control_period(&self) -> f64 {
+        self.dt
+    }
+
+    /// Number of local controllers (= receptive fields of the forward model).
+    pub fn n_local_models(&self) -> usize {
+        self.state.models().map_or(0, |m| m.locals.len())
+    }
+
+    /// Summaries of the local controllers (effective sample size, σ, τ).
+    pub fn local_summaries(&self) -> Vec<crate::local::LocalSummary> {
+        self.state
+            .models()
+            .map_or_else(Vec::new, |m| m.locals.summaries())
+    }
+
+    /// The forward model (the partition), once the warm-up is over.
+    pub fn forward_model(&self) -> Option<&ForwardModel> {
+        self.state.models().map(|m| &m.forward)
+    }
+
+    /// `Â = ∂ẍ/∂u` at `(q, q̇)` from the local dynamics of the active receptive fields (m×n
+    /// row-major into `a`); `false` without support or before the warm-up ends.
+    pub fn input_gain(&mut self, q: &[f64], qd: &[f64], a: &mut [f64]) -> Result<bool> {
+        let State::Ready(models) = &mut self.state else {
+            return Ok(false);
+        };
+        let cutoff = self.cfg.partition.activation_cutoff;
+        models
+            .forward
+            .activations(q, qd, cutoff, &mut self.ws.acts)?;
+        Ok(models.blended_gain(&self.features, &self.ws.acts, q, a))
+    }
+
+    /// Stops (or resumes) the learning of the gravity model `ĝ`. The training driver freezes it
+    /// when on-policy learning starts: along a single path `q̇` and `q̈` are functions of `q`, so
+    /// the inverse-dynamics regression cannot separate them and its value at `q̇ = q̈ = 0` drifts.
+    pub fn freeze_gravity(&mut self, frozen: bool) {
+        self.gravity_frozen = frozen;
+    }
+
+    /// Whether `ĝ` is frozen.
+    pub fn gravity_frozen(&self) -> bool {
+        self.gravity_frozen
+    }
+
+    /// Local controllers with enough data to act.
+    pub fn n_trained(&self) -> usize {
+        let ess = self.cfg.controllers.trained_ess;
+        self.state.models().map_or(0, |m| m.locals.n_trained(ess))
+    }
+
+    /// The gravity model `ĝ`, once the warm-up is over.
+    pub fn gravity_model(&self) -> Option<&GravityModel> {
+        self.state.models().map(|m| &m.gravity)
+    }
+
+    /// The static gravity model, if configured and past the warm-up.
+    pub fn gravity_static_model(&self) -> Option<&GravityModel> {
+        self.state.models().and_then(|m| m.gravity_static.as_ref())
+    }
+
+    /// Receptive fields of the gravity model.
+    pub fn n_gravity_rfs(&self) -> usize {
+        self.gravity_model().map_or(0, |g| g.n_rfs())
+    }
+
+    /// Whether the warm-up is over and the models exist.
+    pub fn ready(&self) -> bool {
+        matches!(self.state, State::Ready(_))
+    }
+}
