@@ -25,6 +25,7 @@ mod ik;
 mod linalg;
 mod model_error;
 mod nominal;
+pub mod profile;
 mod osc;
 mod reference;
 mod trajectory;

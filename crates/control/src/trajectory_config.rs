@@ -132,6 +132,20 @@ fn robot_defaults(model: &Model) -> Result<RobotDefaults> {
     }
 }
 
+/// The data-sheet centre and plane `(c, e1, e2)` of a built-in robot's figure-8 (any other
+/// arm: around the end-effector at its start posture, in the plane of its first and last task
+/// axes).
+pub(crate) fn default_frame(model: &Model) -> Result<(Vector3<f64>, Vector3<f64>, Vector3<f64>)> {
+    let d = robot_defaults(model)?;
+    Ok((d.centre, d.e1, d.e2))
+}
+
+/// The data-sheet half-width and half-height `(a, b)` of a built-in robot's figure-8 (m).
+pub(crate) fn default_size(model: &Model) -> Result<(Option<f64>, Option<f64>)> {
+    let d = robot_defaults(model)?;
+    Ok((Some(d.a), Some(d.b)))
+}
+
 impl TrajectoryConfig {
     /// The trajectory for `model`, defaults filled in. Fails on malformed values (see
     /// [`Trajectory`]), or when the path leaves the model's task space (a centre, direction or

@@ -29,6 +29,7 @@ pub mod inertia;
 pub mod jacobian;
 pub mod kinematics;
 mod model;
+pub mod profile;
 pub mod rnea;
 pub mod robots;
 pub mod sim;
@@ -49,6 +50,7 @@ pub use model::{
 };
 pub use rnea::{gravity, nonlinear_effects, rnea};
 pub use sim::{FrictionScheme, Measurement, Robot, SimConfig, SimRobot};
+pub use profile::{PathPlacement, RobotProfile};
 pub use spatial::Pose;
 
 /// Everything an operational space controller reads, in one call: kinematics (`ee_pos`,

@@ -68,11 +68,12 @@
 
 mod build;
 mod export;
+mod profile_xml;
 mod select;
 mod tree;
 mod xml;
 
-pub use export::to_urdf;
+pub use export::{to_urdf, to_urdf_with_profile};
 pub use select::{GRIPPER_WORDS, NOT_A_TIP, TIP_PATTERNS};
 
 use crate::error::{DynamicsError, Result};
@@ -188,6 +189,7 @@ pub fn parse_urdf_with(text: &str, opts: &UrdfOptions) -> Result<Model> {
         tip_rule,
         locked,
         identified_inertias: raw.identified_inertias,
+        profile: raw.profile.clone(),
     };
     build::build(&raw, &tree, &roles, tip, import)
 }
