@@ -64,8 +64,12 @@ impl<'de> Deserialize<'de> for RobotEntry {
             fn visit_str<E: de::Error>(self, v: &str) -> std::result::Result<RobotEntry, E> {
                 Ok(RobotEntry::from(v))
             }
-            fn visit_map<A: MapAccess<'de>>(self, map: A) -> std::result::Result<RobotEntry, A::Error> {
-                RobotProfile::deserialize(de::value::MapAccessDeserializer::new(map)).map(RobotEntry)
+            fn visit_map<A: MapAccess<'de>>(
+                self,
+                map: A,
+            ) -> std::result::Result<RobotEntry, A::Error> {
+                RobotProfile::deserialize(de::value::MapAccessDeserializer::new(map))
+                    .map(RobotEntry)
             }
         }
         d.deserialize_any(V)

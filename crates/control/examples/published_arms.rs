@@ -28,7 +28,10 @@ const ARMS: [(&str, Option<&str>); 15] = [
 ];
 
 fn run(file: &str, tip: Option<&str>, seconds: f64) -> Result<String, String> {
-    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../dynamics/tests/fixtures/example-robot-data");
+    let dir = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../dynamics/tests/fixtures/example-robot-data"
+    );
     let path = format!("{dir}/{file}");
     let given = RobotProfile {
         tip: tip.map(String::from),
@@ -39,9 +42,13 @@ fn run(file: &str, tip: Option<&str>, seconds: f64) -> Result<String, String> {
     let p = resolve(&model, &given).map_err(e)?;
     let traj_cfg = p.trajectory(&TrajectoryConfig::default());
     let traj = traj_cfg.build(&p.model).map_err(e)?;
-    let home = check_reachable(&p.model, &traj, &IkOptions::default()).map_err(e)?.q_start;
-    let mut sim = SimRobot::new(p.model.clone(), SimConfig::default()).map_err(|x| x.to_string())?;
-    sim.reset(&home, &vec![0.0; p.model.nq()]).map_err(|x| x.to_string())?;
+    let home = check_reachable(&p.model, &traj, &IkOptions::default())
+        .map_err(e)?
+        .q_start;
+    let mut sim =
+        SimRobot::new(p.model.clone(), SimConfig::default()).map_err(|x| x.to_string())?;
+    sim.reset(&home, &vec![0.0; p.model.nq()])
+        .map_err(|x| x.to_string())?;
     let mut osc = Osc::new(p.model.clone(), OscConfig::default()).map_err(e)?;
     let r = run_closed_loop(&mut sim, &mut osc, &traj, p.model.task_axes(), seconds).map_err(e)?;
     let m = &r.metrics;
@@ -54,7 +61,10 @@ fn run(file: &str, tip: Option<&str>, seconds: f64) -> Result<String, String> {
             for j in 0..n {
                 let u = r.series.u[k * n + j];
                 if u.abs() >= tau[j] * 0.999 && shown < 5 {
-                    eprintln!("{file}: t={:.3} joint {j} u={u:.2} limit {}", r.series.t[k], tau[j]);
+                    eprintln!(
+                        "{file}: t={:.3} joint {j} u={u:.2} limit {}",
+                        r.series.t[k], tau[j]
+                    );
                     shown += 1;
                 }
             }
@@ -62,7 +72,7 @@ fn run(file: &str, tip: Option<&str>, seconds: f64) -> Result<String, String> {
         eprintln!("{file}: kp {:?} kd {:?}", pr.kp, pr.kd);
     }
     Ok(format!(
-        "{} | `{}` | {:.3} | {:.0} × {:.0} | {:.4} | {:.4} | {} | {:.2} | {:.2}",
+        "{} | `{}` | {:.3} | {:.0} × {:.0} | {:.4} | {:.4} | {} | {} | {:.2} | {:.2}",
         p.model.nq(),
         pr.tip.clone().unwrap_or_default(),
         pr.reach,
@@ -71,21 +81,32 @@ fn run(file: &str, tip: Option<&str>, seconds: f64) -> Result<String, String> {
         m.tracking_rms_mm,
         m.tracking_max_mm,
         m.torque_saturation_steps,
+        m.limit_steps,
         pr.min_limit_margin,
         pr.peak_torque_ratio,
     ))
+}
+
+fn dir_prefix() -> &'static str {
+    concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../dynamics/tests/fixtures/example-robot-data/"
+    )
 }
 
 fn main() {
     let seconds: f64 = std::env::args()
         .nth(1)
         .map_or(12.0, |s| s.parse().expect("SECONDS is a number"));
-    println!("| arm | DOF | tip | reach (m) | path a × b (mm) | eq. 7 RMS (mm) | max (mm) | saturated steps | min limit margin (rad) | peak torque share |");
-    println!("|---|---|---|---|---|---|---|---|---|---|");
+    println!("| arm | DOF | tip | reach (m) | path a × b (mm) | eq. 7 RMS (mm) | max (mm) | saturated steps | steps at a joint limit | IK min limit margin | IK peak torque share |");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|");
     for (file, tip) in ARMS {
         match run(file, tip, seconds) {
             Ok(row) => println!("| `{file}` | {row} |"),
-            Err(why) => println!("| `{file}` | refused: {} |", why.replace('|', "/")),
+            Err(why) => {
+                let why = why.replace('|', "/").replace(dir_prefix(), "");
+                println!("| `{file}` | refused: {why} |")
+            }
         }
     }
 }

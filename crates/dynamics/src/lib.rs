@@ -48,9 +48,9 @@ pub use model::{
     Friction, JointKind, JointLimits, Link, LockedJoint, Model, ModelSpec, UrdfImport, GRAVITY,
     MAX_DOF,
 };
+pub use profile::{PathPlacement, RobotProfile};
 pub use rnea::{gravity, nonlinear_effects, rnea};
 pub use sim::{FrictionScheme, Measurement, Robot, SimConfig, SimRobot};
-pub use profile::{PathPlacement, RobotProfile};
 pub use spatial::Pose;
 
 /// Everything an operational space controller reads, in one call: kinematics (`ee_pos`,

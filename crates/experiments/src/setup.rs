@@ -3,11 +3,11 @@
 //! test builds before it runs, built in one place.
 
 use crate::error::{ExperimentError, Result};
+use osrl_control::profile::{self, ResolvedProfile};
 use osrl_control::{
     check_reachable, run_closed_loop, IkOptions, ModelError, Osc, OscConfig, Run, TaskController,
     Trajectory, TrajectoryConfig,
 };
-use osrl_control::profile::{self, ResolvedProfile};
 use osrl_dynamics::{Model, RobotProfile, SimConfig, SimRobot};
 use osrl_learn::eval::Evaluator;
 use osrl_learn::train::{Progress, TrainConfig, TrainSummary};

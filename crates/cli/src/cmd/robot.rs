@@ -30,7 +30,10 @@ pub fn run(a: Args) -> Result<()> {
     let model = &profiled.model;
     if a.urdf {
         let p = profiled.as_given();
-        print!("{}", osrl_dynamics::urdf::to_urdf_with_profile(model, Some(&p)));
+        print!(
+            "{}",
+            osrl_dynamics::urdf::to_urdf_with_profile(model, Some(&p))
+        );
         return Ok(());
     }
     let spec = model.spec();

@@ -21,11 +21,18 @@ pub(super) fn per_joint(field: &str, v: &[f64], model: &Model) -> Result<()> {
     if v.len() != n {
         return bad(
             field,
-            format!("{} values for the {n} degrees of freedom of {}", v.len(), model.name()),
+            format!(
+                "{} values for the {n} degrees of freedom of {}",
+                v.len(),
+                model.name()
+            ),
         );
     }
     if let Some(i) = v.iter().position(|x| !x.is_finite()) {
-        return bad(field, format!("{} is {} (not finite)", joint(model, i), v[i]));
+        return bad(
+            field,
+            format!("{} is {} (not finite)", joint(model, i), v[i]),
+        );
     }
     Ok(())
 }
@@ -37,7 +44,10 @@ pub(super) fn posture(field: &str, v: &[f64], model: &Model) -> Result<()> {
         if q < lo || q > hi {
             return bad(
                 field,
-                format!("{} at {q} is outside its limits [{lo}, {hi}]", joint(model, i)),
+                format!(
+                    "{} at {q} is outside its limits [{lo}, {hi}]",
+                    joint(model, i)
+                ),
             );
         }
     }

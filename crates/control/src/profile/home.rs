@@ -43,10 +43,9 @@ fn sampling_box(model: &Model) -> Vec<(f64, f64)> {
             let (lo, hi) = (l.limits.q_min, l.limits.q_max);
             let (lo, hi) = match (lo.is_finite(), hi.is_finite()) {
                 (true, true) => (lo, hi),
-                _ if l.kind == osrl_dynamics::JointKind::Revolute => (
-                    lo.max(-std::f64::consts::PI),
-                    hi.min(std::f64::consts::PI),
-                ),
+                _ if l.kind == osrl_dynamics::JointKind::Revolute => {
+                    (lo.max(-std::f64::consts::PI), hi.min(std::f64::consts::PI))
+                }
                 _ => (0f64.clamp(lo, hi), 0f64.clamp(lo, hi)),
             };
             if hi - lo > 2.0 * MARGIN {
@@ -166,7 +165,13 @@ fn samples(boxes: &[(f64, f64)]) -> Vec<Vec<f64>> {
     samples.extend((0..SAMPLES).map(|_| {
         boxes
             .iter()
-            .map(|&(lo, hi)| if hi > lo { rng.random_range(lo..hi) } else { lo })
+            .map(|&(lo, hi)| {
+                if hi > lo {
+                    rng.random_range(lo..hi)
+                } else {
+                    lo
+                }
+            })
             .collect()
     }));
     samples
@@ -210,7 +215,11 @@ pub(super) fn search(model: &Model, tau_max: &[f64], keep: usize) -> Result<Home
     for (_, mut q) in ranked.into_iter().take(keep * 3) {
         let s = refine(&mut scorer, &mut q, &boxes)?;
         let distinct = candidates.iter().all(|(_, c)| {
-            c.iter().zip(&q).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max) > 0.05
+            c.iter()
+                .zip(&q)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max)
+                > 0.05
         });
         if distinct {
             candidates.push((s, q));

@@ -77,8 +77,14 @@ pub(super) fn feasible(model: &Model, traj: &Trajectory) -> Result<Feasible> {
     for i in 1..k + 2 {
         let qd = (&path[i + 1] - &path[i - 1]) / (2.0 * dt);
         let qdd = (&path[i + 1] - 2.0 * &path[i] + &path[i - 1]) / (dt * dt);
-        let tau = rnea(model, &mut data, path[i].as_slice(), qd.as_slice(), qdd.as_slice())?
-            .clone_owned();
+        let tau = rnea(
+            model,
+            &mut data,
+            path[i].as_slice(),
+            qd.as_slice(),
+            qdd.as_slice(),
+        )?
+        .clone_owned();
         model.friction(qd.as_slice(), &mut friction);
         for j in 0..n {
             let ratio = (tau[j] + friction[j]).abs() / tau_max[j];
