@@ -1,8 +1,10 @@
 //! `cargo run --release -p osrl-control --example published_arms [-- SECONDS]`: every arm of
 //! the committed example-robot-data fixtures with its resolved robot profile
 //! (`osrl_control::profile`), eq. 7 (`N = I`, true model) on its default figure-8 for SECONDS
-//! (default 12) at 500 Hz: DOF, tip, path size, tracking RMS and max, torque saturations, or
-//! the reason the arm is refused. Prints a Markdown table.
+//! (default 12) at 500 Hz: DOF, tip, reach, path size, tracking RMS and max, torque
+//! saturations, steps at a joint limit, control periods with implicit (stiff) friction, and the
+//! profile's IK checks (smallest limit margin, largest torque share) — or the reason the arm is
+//! refused. Prints a Markdown table.
 
 use osrl_control::profile::{load_robot, resolve};
 use osrl_control::{check_reachable, run_closed_loop, IkOptions, Osc, OscConfig, TrajectoryConfig};
@@ -53,26 +55,8 @@ fn run(file: &str, tip: Option<&str>, seconds: f64) -> Result<String, String> {
     let r = run_closed_loop(&mut sim, &mut osc, &traj, p.model.task_axes(), seconds).map_err(e)?;
     let m = &r.metrics;
     let pr = &p.profile;
-    if std::env::var("DEBUG_SAT").is_ok() {
-        let n = p.model.nq();
-        let tau = &pr.torque_limits;
-        let mut shown = 0;
-        for k in 0..r.series.len() {
-            for j in 0..n {
-                let u = r.series.u[k * n + j];
-                if u.abs() >= tau[j] * 0.999 && shown < 5 {
-                    eprintln!(
-                        "{file}: t={:.3} joint {j} u={u:.2} limit {}",
-                        r.series.t[k], tau[j]
-                    );
-                    shown += 1;
-                }
-            }
-        }
-        eprintln!("{file}: kp {:?} kd {:?}", pr.kp, pr.kd);
-    }
     Ok(format!(
-        "{} | `{}` | {:.3} | {:.0} × {:.0} | {:.4} | {:.4} | {} | {} | {:.2} | {:.2}",
+        "{} | `{}` | {:.3} | {:.0} × {:.0} | {:.4} | {:.4} | {} | {} | {} | {:.2} | {:.2}",
         p.model.nq(),
         pr.tip.clone().unwrap_or_default(),
         pr.reach,
@@ -82,6 +66,7 @@ fn run(file: &str, tip: Option<&str>, seconds: f64) -> Result<String, String> {
         m.tracking_max_mm,
         m.torque_saturation_steps,
         m.limit_steps,
+        sim.stats().implicit_friction,
         pr.min_limit_margin,
         pr.peak_torque_ratio,
     ))
@@ -98,8 +83,8 @@ fn main() {
     let seconds: f64 = std::env::args()
         .nth(1)
         .map_or(12.0, |s| s.parse().expect("SECONDS is a number"));
-    println!("| arm | DOF | tip | reach (m) | path a × b (mm) | eq. 7 RMS (mm) | max (mm) | saturated steps | steps at a joint limit | IK min limit margin | IK peak torque share |");
-    println!("|---|---|---|---|---|---|---|---|---|---|---|");
+    println!("| arm | DOF | tip | reach (m) | path a × b (mm) | eq. 7 RMS (mm) | max (mm) | saturated steps | steps at a joint limit | implicit friction periods | IK min limit margin | IK peak torque share |");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|");
     for (file, tip) in ARMS {
         match run(file, tip, seconds) {
             Ok(row) => println!("| `{file}` | {row} |"),

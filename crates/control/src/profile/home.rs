@@ -107,7 +107,7 @@ impl<'a> Scorer<'a> {
         let m = axes.len();
         let j = DMatrix::from_fn(m, self.model.nq(), |row, c| self.data.jac[(axes[row], c)]);
         let det = (&j * j.transpose()).determinant();
-        if !(det > 0.0) {
+        if det.is_nan() || det <= 0.0 {
             return Ok(Err("singular".into()));
         }
         let g = gravity(self.model, &mut self.data, q)?;
@@ -228,7 +228,7 @@ pub(super) fn search(model: &Model, tau_max: &[f64], keep: usize) -> Result<Home
     candidates.sort_by(|a, b| b.0.total_cmp(&a.0));
     candidates.truncate(keep);
     let mut worst: Vec<(usize, String)> = rejected.into_iter().map(|(k, v)| (v, k)).collect();
-    worst.sort_by(|a, b| b.0.cmp(&a.0));
+    worst.sort_by_key(|w| std::cmp::Reverse(w.0));
     let rejected = worst
         .iter()
         .take(3)

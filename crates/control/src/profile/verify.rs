@@ -23,10 +23,37 @@ pub(super) fn eq7_tracks(model: &Model, traj: &Trajectory, start: &[f64]) -> Res
     let seconds = 2.0 * traj.period();
     let m = run_closed_loop(&mut sim, &mut osc, traj, model.task_axes(), seconds)?.metrics;
     if m.tracking_rms_mm > TRACKING_BOUND_MM || m.torque_saturation_steps > 0 {
+        let steps = traj.steps_per_period(SimConfig::default().control_period) * 2;
+        let implicit = sim.stats().implicit_friction;
+        let stiff = if implicit > 0 {
+            let (j, l) = model
+                .links()
+                .iter()
+                .enumerate()
+                .max_by(|a, b| {
+                    let s = |l: &osrl_dynamics::Link| {
+                        l.friction.viscous + l.friction.coulomb / l.friction.coulomb_velocity
+                    };
+                    s(a.1).total_cmp(&s(b.1))
+                })
+                .expect("a model has joints");
+            format!(
+                "; the joint friction is stiff for the {} ms control period (integrated \
+                 implicitly in {implicit} of {steps} periods; e.g. joint {j} '{}': damping {}, \
+                 Coulomb {} smoothed over {} rad/s), which the held command cannot follow",
+                1e3 * SimConfig::default().control_period,
+                l.joint_name,
+                l.friction.viscous,
+                l.friction.coulomb,
+                l.friction.coulomb_velocity
+            )
+        } else {
+            String::new()
+        };
         return Err(ControlError::Unreachable(format!(
             "eq. 7 tracks it at {:.4} mm RMS (bound {TRACKING_BOUND_MM} mm) with {} saturated \
-             torque steps and {} steps at a joint limit",
-            m.tracking_rms_mm, m.torque_saturation_steps, m.limit_steps
+             torque steps{stiff}",
+            m.tracking_rms_mm, m.torque_saturation_steps
         )));
     }
     Ok(m)
