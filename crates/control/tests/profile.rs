@@ -129,7 +129,10 @@ fn a_computed_profile_travels_with_the_exported_panda() {
     let text = to_urdf_with_profile(&p.model, Some(&p.as_given()));
     let back = resolve(&parse_urdf(&text).unwrap(), &RobotProfile::default()).unwrap();
     let (a, b) = (&p.profile, &back.profile);
-    assert_eq!((&a.home, &a.rest, &a.kp, &a.kd), (&b.home, &b.rest, &b.kp, &b.kd));
+    assert_eq!(
+        (&a.home, &a.rest, &a.kp, &a.kd),
+        (&b.home, &b.rest, &b.kp, &b.kd)
+    );
     assert_eq!((&a.path, &a.torque_limits), (&b.path, &b.torque_limits));
     assert_eq!(b.sources["kp"], osrl_control::profile::Source::File);
 }

@@ -200,6 +200,7 @@ pub fn run(a: Args) -> Result<()> {
         (m.sim_seconds / wall.max(1e-9)).into(),
     );
     obj.insert("q_start".into(), serde_json::to_value(setup.home())?);
+    obj.insert("profile".into(), serde_json::to_value(setup.profile())?);
     if let Some(l) = &learned {
         let c = l.counts();
         obj.insert("learned_steps".into(), c.learned.into());
