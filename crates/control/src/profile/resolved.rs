@@ -62,7 +62,8 @@ pub struct ResolvedProfile {
     pub min_limit_margin: f64,
     /// Largest share of a torque limit the IK path's inverse dynamics need.
     pub peak_torque_ratio: f64,
-    /// Where each value came from (keys: the profile's field names).
+    /// Where each value came from (keys: `home`, `rest`, `kp`, `kd`, `torque_limits`, `path`;
+    /// `path` is `given` or `file` when any of its fields is, the others then computed).
     pub sources: BTreeMap<&'static str, Source>,
 }
 
