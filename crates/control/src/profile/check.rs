@@ -1,7 +1,7 @@
 //! Checks of the values a profile gives, each error naming the field and the joint.
 
 use crate::error::{ControlError, Result};
-use osrl_dynamics::Model;
+use osrl_dynamics::{Model, RobotProfile};
 
 /// An error naming the profile `field`.
 pub(super) fn bad<T>(field: &str, reason: String) -> Result<T> {
@@ -82,6 +82,51 @@ pub(super) fn point(field: &str, p: &[f64; 3], direction: bool) -> Result<()> {
     }
     if direction && p.iter().all(|&x| x == 0.0) {
         return bad(field, "the zero vector is not a direction".into());
+    }
+    Ok(())
+}
+
+/// Checks every value `p` sets, naming the field.
+pub(super) fn check_given(model: &Model, p: &RobotProfile) -> Result<()> {
+    for (field, v) in [("home", &p.home), ("rest", &p.rest)] {
+        if let Some(v) = v {
+            posture(field, v, model)?;
+        }
+    }
+    for (field, v) in [("kp", &p.kp), ("kd", &p.kd)] {
+        if let Some(v) = v {
+            non_negative(field, v, model, false)?;
+        }
+    }
+    if let Some(v) = &p.torque_limits {
+        non_negative("torque_limits", v, model, true)?;
+    }
+    let scalars = [
+        ("null_space_frequency", p.null_space_frequency),
+        ("null_space_damping", p.null_space_damping),
+        ("path.a", p.path.a),
+        ("path.b", p.path.b),
+        ("path.scale", p.path.scale),
+    ];
+    for (field, x) in scalars {
+        if let Some(x) = x {
+            positive(field, x)?;
+        }
+    }
+    if let Some(s) = p.path.scale.filter(|&s| s > 1.0) {
+        return bad(
+            "path.scale",
+            format!("{s} is more than the whole reach (≤ 1)"),
+        );
+    }
+    for (field, x, dir) in [
+        ("path.centre", p.path.centre, false),
+        ("path.e1", p.path.e1, true),
+        ("path.e2", p.path.e2, true),
+    ] {
+        if let Some(x) = x {
+            point(field, &x, dir)?;
+        }
     }
     Ok(())
 }

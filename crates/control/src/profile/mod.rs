@@ -23,6 +23,7 @@
 //!   saturated torque. An arm for which no candidate works is refused
 //!   with the last reason.
 
+mod apply;
 mod check;
 mod home;
 mod placement;
@@ -34,8 +35,8 @@ pub use resolved::{PathFrame, Profiled, ResolvedProfile, Source};
 pub use verify::TRACKING_BOUND_MM;
 
 use crate::error::Result;
-use crate::trajectory::Trajectory;
-use check::bad;
+use apply::{apply, figure8, free_inertia};
+use check::{bad, check_given};
 use osrl_dynamics::{robots, Model, RobotProfile};
 
 /// Default null-space natural frequency `ω` of the computed joint gains (rad/s).
@@ -70,110 +71,6 @@ pub fn load_robot(robot: &str, profile: &RobotProfile) -> Result<Model> {
         )?);
     }
     Ok(robots::by_name(robot)?)
-}
-
-/// The effective inertia of each joint at `q` with every other joint free, `1 / (M⁻¹)_ii`
-/// (kg·m² or kg; at most `M_ii`).
-fn free_inertia(model: &Model, q: &[f64]) -> Result<Vec<f64>> {
-    let mut data = model.data();
-    let m = osrl_dynamics::crba(model, &mut data, q)?.clone_owned();
-    let Some(chol) = m.cholesky() else {
-        return bad(
-            "home",
-            format!(
-                "the mass matrix of {} is not positive definite there",
-                model.name()
-            ),
-        );
-    };
-    let inv = chol.inverse();
-    Ok((0..model.nq()).map(|i| 1.0 / inv[(i, i)]).collect())
-}
-
-/// Checks every value `p` sets, naming the field.
-fn check_given(model: &Model, p: &RobotProfile) -> Result<()> {
-    for (field, v) in [("home", &p.home), ("rest", &p.rest)] {
-        if let Some(v) = v {
-            check::posture(field, v, model)?;
-        }
-    }
-    for (field, v) in [("kp", &p.kp), ("kd", &p.kd)] {
-        if let Some(v) = v {
-            check::non_negative(field, v, model, false)?;
-        }
-    }
-    if let Some(v) = &p.torque_limits {
-        check::non_negative("torque_limits", v, model, true)?;
-    }
-    let scalars = [
-        ("null_space_frequency", p.null_space_frequency),
-        ("null_space_damping", p.null_space_damping),
-        ("path.a", p.path.a),
-        ("path.b", p.path.b),
-        ("path.scale", p.path.scale),
-    ];
-    for (field, x) in scalars {
-        if let Some(x) = x {
-            check::positive(field, x)?;
-        }
-    }
-    if let Some(s) = p.path.scale.filter(|&s| s > 1.0) {
-        return bad(
-            "path.scale",
-            format!("{s} is more than the whole reach (≤ 1)"),
-        );
-    }
-    for (field, x, dir) in [
-        ("path.centre", p.path.centre, false),
-        ("path.e1", p.path.e1, true),
-        ("path.e2", p.path.e2, true),
-    ] {
-        if let Some(x) = x {
-            check::point(field, &x, dir)?;
-        }
-    }
-    Ok(())
-}
-
-/// The model with the profile's postures, gains and torque limits (the model itself when
-/// nothing changes, so built-in robots stay bit-identical).
-fn apply(
-    model: &Model,
-    home: &[f64],
-    rest: &[f64],
-    kp: &[f64],
-    kd: &[f64],
-    tau: &[f64],
-) -> Result<Model> {
-    let s = model.spec();
-    let same_tau = model.tau_max().zip(tau).all(|(a, &b)| a == b);
-    if s.q_start == home && s.q_rest == rest && s.kp == kp && s.kd == kd && same_tau {
-        return Ok(model.clone());
-    }
-    let mut spec = s.clone();
-    spec.q_start = home.to_vec();
-    spec.q_rest = rest.to_vec();
-    spec.kp = kp.to_vec();
-    spec.kd = kd.to_vec();
-    for (l, &t) in spec.links.iter_mut().zip(tau) {
-        l.limits.tau_max = t;
-    }
-    Ok(Model::new(spec)?)
-}
-
-/// The figure-8 of the default period and ramp in `frame`.
-fn figure8(frame: &PathFrame) -> Result<Trajectory> {
-    let d = crate::TrajectoryConfig::default();
-    let v = nalgebra::Vector3::from;
-    Trajectory::figure8(
-        v(frame.centre),
-        v(frame.e1),
-        v(frame.e2),
-        frame.a,
-        frame.b,
-        d.period,
-        d.ramp,
-    )
 }
 
 /// Resolves `given` for `model` (module docs): every missing value computed or taken from the
