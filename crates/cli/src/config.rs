@@ -3,7 +3,7 @@
 //! default, an unknown one is an error. Other commands add their sections here.
 //!
 //! ```toml
-//! robot = "sarcos7"
+//! robot = "sarcos7"       # or a [robot] section: name + robot profile (robot_entry.rs)
 //! [trajectory]            # osrl_control::TrajectoryConfig
 //! kind = "figure8"
 //! period = 4.0
@@ -24,6 +24,7 @@
 //! babble = { minutes = 4.0 }
 //! ```
 
+use crate::robot_entry::RobotEntry;
 use anyhow::{bail, Result};
 use osrl_control::{ModelError, OscConfig, TrajectoryConfig};
 use osrl_dynamics::SimConfig;
@@ -51,8 +52,11 @@ impl Default for SimulateConfig {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Config {
-    /// Built-in robot name (`planar3`, `sarcos7`) or URDF path. Default `planar3`.
-    pub robot: String,
+    /// Built-in robot name (`planar3`, `sarcos7`) or URDF path (`robot = "..."`), or a
+    /// `[robot]` section with `name` and a robot profile (`osrl_dynamics::RobotProfile`: tip,
+    /// locks, postures, gains, torque limits, path placement; unset values are computed from
+    /// the model). Default `planar3` with its data sheet.
+    pub robot: RobotEntry,
     /// Task-space trajectory; unset fields take the robot's defaults.
     pub trajectory: TrajectoryConfig,
     /// Analytical controller: law, metric, task gains, nominal scale, damping.
@@ -74,7 +78,7 @@ pub struct Config {
 impl Default for Config {
     fn default() -> Self {
         Self {
-            robot: "planar3".into(),
+            robot: RobotEntry::from(crate::robot_entry::DEFAULT_ROBOT),
             trajectory: TrajectoryConfig::default(),
             controller: OscConfig::default(),
             sim: SimConfig::default(),
@@ -145,7 +149,18 @@ mod tests {
         assert_eq!(back, Config::default());
         let partial: Config =
             toml::from_str("robot = \"sarcos7\"\n[controller]\nlaw = \"eq4\"\n").unwrap();
-        assert_eq!(partial.robot, "sarcos7");
+        assert_eq!(partial.robot.name(), "sarcos7");
+        let section: Config = toml::from_str(
+            "[robot]\nname = \"x.urdf\"\nkp = [1.0, 2.0]\npath = { scale = 0.05 }\n",
+        )
+        .unwrap();
+        assert_eq!(section.robot.name(), "x.urdf");
+        assert_eq!(section.robot.0.kp, Some(vec![1.0, 2.0]));
+        assert_eq!(section.robot.0.path.scale, Some(0.05));
+        let text = toml::to_string(&section).unwrap();
+        assert_eq!(toml::from_str::<Config>(&text).unwrap(), section);
+        let err = toml::from_str::<Config>("[robot]\nname = \"x\"\nkpp = [1.0]").unwrap_err();
+        assert!(err.to_string().contains("kpp"), "{err}");
         assert_eq!(partial.controller.law, osrl_control::Law::Eq4);
         assert_eq!(partial.sim, SimConfig::default());
         assert!(toml::from_str::<Config>("robt = \"x\"").is_err());

@@ -6,6 +6,7 @@
 mod cmd;
 mod config;
 mod progress;
+mod robot_entry;
 mod util;
 
 use clap::{Parser, Subcommand};

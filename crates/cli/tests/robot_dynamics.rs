@@ -102,3 +102,39 @@ fn exported_urdf_loads_back_as_the_same_robot() {
     );
     std::fs::remove_file(&path).ok();
 }
+
+#[test]
+fn robot_json_prints_the_resolved_profile_and_urdf_carries_it() {
+    let panda = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../dynamics/tests/fixtures/example-robot-data/panda.urdf"
+    );
+    let (ok, out, err) = osrl(&["robot", "--robot", panda, "--json"]);
+    assert!(ok, "{err}");
+    let v = last_json(&out);
+    let p = &v["profile"];
+    assert_eq!(p["tip"], "panda_hand_tcp");
+    assert_eq!(p["sources"]["home"], "computed");
+    assert_eq!(p["home"], v["q_start"]);
+    assert_eq!(p["kp"].as_array().unwrap().len(), 7);
+    assert!(p["path"]["a"].as_f64().unwrap() > 0.0);
+    // The export embeds the profile; a bad profile flag is refused naming the field.
+    let (ok, urdf, err) = osrl(&["robot", "--robot", "planar3", "--urdf"]);
+    assert!(
+        ok && urdf.contains("<osrl_profile home=\"-1.0 1.4 0.7\""),
+        "{err}"
+    );
+    let dir = std::env::temp_dir().join(format!("osrl-profile-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let bad = dir.join("bad.toml");
+    std::fs::write(&bad, "kd = [1.0, 2.0]\n").unwrap();
+    let (ok, _, err) = osrl(&[
+        "robot",
+        "--robot",
+        "planar3",
+        "--profile",
+        bad.to_str().unwrap(),
+    ]);
+    assert!(!ok && err.contains("robot profile kd"), "{err}");
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -35,6 +35,10 @@ pub enum ControlError {
     /// A configuration value is out of range.
     #[error("invalid control config: {0}")]
     InvalidConfig(String),
+    /// A robot profile value is malformed or out of range, or the arm cannot be given a
+    /// profile it can track with (`osrl_control::profile`): the field and why.
+    #[error("robot profile {field}: {reason}")]
+    Profile { field: String, reason: String },
     /// A model-error description (`--model-error`) cannot be parsed or is out of range.
     #[error("invalid model error '{spec}': {reason}")]
     ModelErrorSpec { spec: String, reason: String },

@@ -31,6 +31,7 @@ mod linalg;
 mod model_error;
 mod nominal;
 mod osc;
+pub mod profile;
 mod reference;
 mod settle;
 mod trajectory;

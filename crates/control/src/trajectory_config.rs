@@ -28,7 +28,8 @@ pub struct TrajectoryConfig {
     pub kind: TrajectoryKind,
     /// Centre `c` (m). Default per robot: planar3 (0.65, 0, 0.25), in the arm's x–z plane;
     /// sarcos7 (0.30, 0.40, 0.05), 0.40 m in front of (+y, where the forearm points at the rest
-    /// posture) and 0.23 m below the shoulder; any other arm: the end-effector at `q_start`.
+    /// posture) and 0.23 m below the shoulder; any other arm: the end-effector at `q_start`
+    /// (its robot profile, [`crate::profile::Profiled::trajectory`], sets centre, plane and size).
     /// The defaults were checked by IK and by simulating eq. 7 with `N = I` (all joints keep
     /// more than 0.25 rad from their limits).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -130,6 +131,20 @@ fn robot_defaults(model: &Model) -> Result<RobotDefaults> {
             })
         }
     }
+}
+
+/// The data-sheet centre and plane `(c, e1, e2)` of a built-in robot's figure-8 (any other
+/// arm: around the end-effector at its start posture, in the plane of its first and last task
+/// axes).
+pub(crate) fn default_frame(model: &Model) -> Result<(Vector3<f64>, Vector3<f64>, Vector3<f64>)> {
+    let d = robot_defaults(model)?;
+    Ok((d.centre, d.e1, d.e2))
+}
+
+/// The data-sheet half-width and half-height `(a, b)` of a built-in robot's figure-8 (m).
+pub(crate) fn default_size(model: &Model) -> Result<(Option<f64>, Option<f64>)> {
+    let d = robot_defaults(model)?;
+    Ok((Some(d.a), Some(d.b)))
 }
 
 impl TrajectoryConfig {

@@ -29,6 +29,7 @@ pub mod inertia;
 pub mod jacobian;
 pub mod kinematics;
 mod model;
+pub mod profile;
 pub mod rnea;
 pub mod robots;
 pub mod sim;
@@ -47,6 +48,7 @@ pub use model::{
     Friction, JointKind, JointLimits, Link, LockedJoint, Model, ModelSpec, UrdfImport, GRAVITY,
     MAX_DOF,
 };
+pub use profile::{PathPlacement, RobotProfile};
 pub use rnea::{gravity, nonlinear_effects, rnea};
 pub use sim::{FrictionScheme, Measurement, Robot, SimConfig, SimRobot};
 pub use spatial::Pose;

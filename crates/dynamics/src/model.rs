@@ -152,6 +152,11 @@ pub struct UrdfImport {
     pub locked: Vec<LockedJoint>,
     /// The file declared identified inertial parameters, so the per-link check was skipped.
     pub identified_inertias: bool,
+    /// The robot profile the file carries (`<osrl_profile .../>`, written by
+    /// [`crate::urdf::to_urdf_with_profile`]), as given: resolved and checked by
+    /// `osrl_control::profile`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub profile: Option<crate::profile::RobotProfile>,
 }
 
 /// A movable URDF joint that the loader held rigid, its position and why.

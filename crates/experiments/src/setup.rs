@@ -3,11 +3,12 @@
 //! test builds before it runs, built in one place.
 
 use crate::error::{ExperimentError, Result};
+use osrl_control::profile::{self, ResolvedProfile};
 use osrl_control::{
     check_reachable, run_closed_loop, IkOptions, ModelError, Osc, OscConfig, Run, TaskController,
     Trajectory, TrajectoryConfig,
 };
-use osrl_dynamics::{Model, SimConfig, SimRobot};
+use osrl_dynamics::{Model, RobotProfile, SimConfig, SimRobot};
 use osrl_learn::eval::Evaluator;
 use osrl_learn::train::{Progress, TrainConfig, TrainSummary};
 use osrl_learn::{Learner, LearnerConfig, ModelInfo, SavedModel, CONTROL_PERIOD_RANGE};
@@ -27,6 +28,7 @@ use osrl_learn::{Learner, LearnerConfig, ModelInfo, SavedModel, CONTROL_PERIOD_R
 pub struct Setup {
     robot: String,
     model: Model,
+    profile: ResolvedProfile,
     trajectory: TrajectoryConfig,
     traj: Trajectory,
     home: Vec<f64>,
@@ -56,22 +58,52 @@ impl Setup {
     /// # Errors
     /// As [`Setup::new`].
     pub fn along(robot: &str, trajectory: TrajectoryConfig) -> Result<Self> {
-        let model = osrl_learn::load_robot(robot)?;
-        Self::from_model(robot_reference(robot), model, trajectory)
+        Self::profiled(robot, &RobotProfile::default(), trajectory)
+    }
+
+    /// As [`Setup::along`] with a robot profile ([`osrl_control::profile`]): the URDF is read
+    /// with its tip and locks, and the model gets the profile's postures, gains and torque
+    /// limits, each value given or computed from the model; the trajectory's unset centre,
+    /// plane and size are the profile's path.
+    ///
+    /// # Errors
+    /// As [`Setup::new`], or a profile value that is malformed or does not fit the arm (the
+    /// error names the field), or an arm that cannot be profiled (the error says why).
+    pub fn profiled(
+        robot: &str,
+        given: &RobotProfile,
+        trajectory: TrajectoryConfig,
+    ) -> Result<Self> {
+        let model = profile::load_robot(robot, given)?;
+        Self::from_model_with(robot_reference(robot), model, given, trajectory)
     }
 
     /// As [`Setup::along`] for a robot model already loaded; `robot` is how a saved model names
-    /// it (a built-in name, or the URDF file's absolute path).
+    /// it (a built-in name, or the URDF file's absolute path). The model gets its default
+    /// profile (a built-in robot's data sheet, a URDF's embedded or computed values).
     ///
     /// # Errors
     /// As [`Setup::new`].
     pub fn from_model(robot: String, model: Model, trajectory: TrajectoryConfig) -> Result<Self> {
+        Self::from_model_with(robot, model, &RobotProfile::default(), trajectory)
+    }
+
+    fn from_model_with(
+        robot: String,
+        model: Model,
+        given: &RobotProfile,
+        trajectory: TrajectoryConfig,
+    ) -> Result<Self> {
+        let profiled = profile::resolve(&model, given)?;
+        let trajectory = profiled.trajectory(&trajectory);
+        let (model, profile) = (profiled.model, profiled.profile);
         let traj = trajectory.build(&model)?;
         let home = check_reachable(&model, &traj, &IkOptions::default())?.q_start;
         let learner = data_sheet(&model, LearnerConfig::default())?;
         Ok(Self {
             robot,
             model,
+            profile,
             trajectory,
             traj,
             home,
@@ -186,9 +218,13 @@ impl Setup {
     pub fn robot(&self) -> &str {
         &self.robot
     }
-    /// The robot's model (the simulated robot's, without model errors).
+    /// The robot's model (the simulated robot's, without model errors), its profile applied.
     pub fn model(&self) -> &Model {
         &self.model
+    }
+    /// The robot's resolved profile: every value and where it came from.
+    pub fn profile(&self) -> &ResolvedProfile {
+        &self.profile
     }
     /// The trajectory's config and the trajectory built from it for this robot.
     pub fn trajectory_config(&self) -> &TrajectoryConfig {

@@ -1,14 +1,21 @@
-//! `osrl robot`: show a robot model.
+//! `osrl robot`: show a robot model with its resolved robot profile (`osrl_control::profile`:
+//! tip, locked joints, home and rest postures, joint gains, torque limits, the default path's
+//! placement, and where each value came from), or export it as URDF with the profile embedded
+//! (`<osrl_profile .../>`), so that the exported file loads back with the same profile.
 
-use crate::util::load_robot;
+use crate::robot_entry::ProfileArgs;
 use anyhow::Result;
+use osrl_control::profile::{load_robot, resolve};
+use osrl_dynamics::RobotProfile;
 
 #[derive(clap::Args)]
 pub struct Args {
     /// Built-in robot (planar3, sarcos7) or a URDF file.
     #[arg(long)]
     pub robot: String,
-    /// Print the model as URDF.
+    #[command(flatten)]
+    pub profile: ProfileArgs,
+    /// Print the model as URDF, its resolved profile embedded.
     #[arg(long)]
     pub urdf: bool,
     /// Print a JSON summary of the model.
@@ -17,9 +24,16 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<()> {
-    let model = load_robot(&a.robot)?;
+    let given = a.profile.apply(&RobotProfile::default())?;
+    let loaded = load_robot(&a.robot, &given)?;
+    let profiled = resolve(&loaded, &given)?;
+    let model = &profiled.model;
     if a.urdf {
-        print!("{}", osrl_dynamics::urdf::to_urdf(&model));
+        let p = profiled.as_given();
+        print!(
+            "{}",
+            osrl_dynamics::urdf::to_urdf_with_profile(model, Some(&p))
+        );
         return Ok(());
     }
     let spec = model.spec();
@@ -34,14 +48,27 @@ pub fn run(a: Args) -> Result<()> {
         "total_mass": model.total_mass(),
         "q_start": spec.q_start,
         "q_rest": spec.q_rest,
+        "kp": spec.kp,
+        "kd": spec.kd,
+        "profile": profiled.profile,
     });
     if !a.json {
+        let p = &profiled.profile;
+        let kinds = |k| spec.links.iter().filter(|l| l.kind == k).count();
         println!(
-            "{} — {} revolute joints, {:.3} kg, task axes {:?}",
+            "{} — {} revolute and {} prismatic joints, {:.3} kg, task axes {:?}",
             spec.name,
-            model.nq(),
+            kinds(osrl_dynamics::JointKind::Revolute),
+            kinds(osrl_dynamics::JointKind::Prismatic),
             model.total_mass(),
             spec.task_axes
+        );
+        if let (Some(tip), Some(rule)) = (&p.tip, &p.tip_rule) {
+            println!("tip {tip} ({rule}); locked: {}", p.locked.join(", "));
+        }
+        println!(
+            "profile: home {:?}; path centre {:?}, a {:.3} m, b {:.3} m; reach {:.3} m; sources {:?}",
+            p.home, p.path.centre, p.path.a, p.path.b, p.reach, p.sources
         );
     }
     crate::util::print_json(&summary);

@@ -9,6 +9,7 @@
 //! the simulated robot (the other errors concern an analytical model, which it does not have).
 
 use crate::config::Config;
+use crate::robot_entry::ProfileArgs;
 use crate::util::{print_json, trajectory_kind};
 use anyhow::{bail, Context, Result};
 use osrl_control::{Law, MetricKind, ModelError, Osc};
@@ -51,6 +52,8 @@ pub struct Args {
     /// Model error of the controller's model, e.g. `mass=1.3,com=0.02,friction=off,payload=0.5`.
     #[arg(long)]
     pub model_error: Option<String>,
+    #[command(flatten)]
+    pub profile: ProfileArgs,
     /// Directory for simulate.csv, path.svg/png, metrics.json and config.toml.
     #[arg(long)]
     pub out: Option<PathBuf>,
@@ -64,7 +67,7 @@ pub struct Args {
 fn effective_config(a: &Args, learned: Option<&SavedModel>) -> Result<Config> {
     let mut cfg = Config::load(a.config.as_deref())?;
     if let Some(info) = learned.map(SavedModel::info) {
-        cfg.robot = info.robot.clone();
+        cfg.robot.set_name(&info.robot);
         cfg.trajectory = info.trajectory.clone();
         if a.robot.as_ref().is_some_and(|r| *r != info.robot) {
             bail!(
@@ -83,8 +86,9 @@ fn effective_config(a: &Args, learned: Option<&SavedModel>) -> Result<Config> {
         cfg.sim.control_period = info.control_period;
     }
     if let Some(r) = &a.robot {
-        cfg.robot = r.clone();
+        cfg.robot.set_name(r);
     }
+    cfg.robot.0 = a.profile.apply(&cfg.robot.0)?;
     if let Some(c) = a
         .controller
         .as_deref()
@@ -121,7 +125,8 @@ pub fn run(a: Args) -> Result<()> {
         .map(PathBuf::from);
     let loaded = model_path.as_deref().map(SavedModel::load).transpose()?;
     let cfg = effective_config(&a, loaded.as_ref())?;
-    let setup = Setup::along(&cfg.robot, cfg.trajectory.clone())?.with_sim(cfg.sim.clone())?;
+    let setup = Setup::profiled(cfg.robot.name(), &cfg.robot.0, cfg.trajectory.clone())?
+        .with_sim(cfg.sim.clone())?;
     let model = setup.model().clone();
     let (sim_model, ctrl_model) = cfg.model_error.apply(&model)?;
     let mut learned = loaded.map(SavedModel::controller).transpose()?;
@@ -195,6 +200,7 @@ pub fn run(a: Args) -> Result<()> {
         (m.sim_seconds / wall.max(1e-9)).into(),
     );
     obj.insert("q_start".into(), serde_json::to_value(setup.home())?);
+    obj.insert("profile".into(), serde_json::to_value(setup.profile())?);
     if let Some(l) = &learned {
         let c = l.counts();
         obj.insert("learned_steps".into(), c.learned.into());

@@ -73,7 +73,15 @@ fn config(a: &Args) -> Result<Config> {
         );
     }
     if let Some(r) = &a.robot {
-        cfg.robot = r.clone();
+        cfg.robot.set_name(r);
+    }
+    if !cfg.robot.0.is_empty() {
+        bail!(
+            "a robot profile ([robot] section) cannot be saved with a trained model yet: export \
+             the profiled robot with `osrl robot --robot {} --profile F --urdf > G.urdf` (the \
+             profile travels in the file) and train on G.urdf",
+            cfg.robot.name()
+        );
     }
     if let Some(t) = &a.trajectory {
         cfg.trajectory.kind = trajectory_kind(t);
@@ -91,7 +99,7 @@ fn config(a: &Args) -> Result<Config> {
 /// Trains, saves, reports.
 pub fn run(a: Args) -> Result<()> {
     let cfg = config(&a)?;
-    let setup = Setup::along(&cfg.robot, cfg.trajectory.clone())?
+    let setup = Setup::along(cfg.robot.name(), cfg.trajectory.clone())?
         .with_sim(cfg.sim.clone())?
         .with_learner(cfg.learner.clone())
         .context("[learner]")?

@@ -53,10 +53,18 @@ fn write_link(s: &mut String, l: &crate::model::Link) {
 }
 
 /// The model as a URDF document. Gravity is not part of URDF: the model's is assumed to be the
-/// URDF convention (9.81 m/s² along −z). Postures, gains and task axes are not exported. A model
+/// URDF convention (9.81 m/s² along −z). Postures and gains only with [`to_urdf_with_profile`];
+/// task axes are found again by the loader. A model
 /// with a link inertia that no rigid body has (identified base parameters) gets the element
 /// `<osrl identified_inertias="true"/>`, so that it loads back.
 pub fn to_urdf(model: &Model) -> String {
+    to_urdf_with_profile(model, None)
+}
+
+/// As [`to_urdf`], with a robot profile written as an `<osrl_profile .../>` element (postures,
+/// gains, torque limits, path placement; see [`crate::RobotProfile`]) that the loader reads back
+/// into [`crate::UrdfImport::profile`].
+pub fn to_urdf_with_profile(model: &Model, profile: Option<&crate::RobotProfile>) -> String {
     let spec = model.spec();
     let mut s = String::new();
     let _ = writeln!(s, "<?xml version=\"1.0\"?>");
@@ -68,6 +76,9 @@ pub fn to_urdf(model: &Model) -> String {
     if identified {
         // Identified base parameters: physical for the arm as a whole, not link by link.
         let _ = writeln!(s, "  <osrl identified_inertias=\"true\"/>");
+    }
+    if let Some(p) = profile {
+        s.push_str(&super::profile_xml::write(p));
     }
     let _ = writeln!(s, "  <link name=\"base_link\"/>");
     let mut parent = "base_link".to_string();

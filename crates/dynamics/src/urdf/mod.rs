@@ -42,7 +42,10 @@
 //!
 //! Gravity is the URDF convention (9.81 m/s² along −z); the task axes are the world axes the
 //! end-effector can move along (a planar arm gets a 2-D task); start and rest postures are the
-//! middle of the joint limits (0 without limits), PD gains 10 and 1.
+//! middle of the joint limits (0 without limits), PD gains 10 and 1 — placeholders that
+//! `osrl_control::profile` replaces (computed from the model, or given). A `<osrl_profile .../>`
+//! child of `<robot>` carries a robot profile ([`crate::RobotProfile`]), read into
+//! [`crate::UrdfImport::profile`].
 //!
 //! Export writes the model back: joint origins as `xyz`/`rpy`, inertias about the centre of mass,
 //! `<dynamics damping friction>`, `<limit>`, and a massless `ee_link` on a fixed joint at the
@@ -68,11 +71,12 @@
 
 mod build;
 mod export;
+mod profile_xml;
 mod select;
 mod tree;
 mod xml;
 
-pub use export::to_urdf;
+pub use export::{to_urdf, to_urdf_with_profile};
 pub use select::{GRIPPER_WORDS, NOT_A_TIP, TIP_PATTERNS};
 
 use crate::error::{DynamicsError, Result};
@@ -188,6 +192,7 @@ pub fn parse_urdf_with(text: &str, opts: &UrdfOptions) -> Result<Model> {
         tip_rule,
         locked,
         identified_inertias: raw.identified_inertias,
+        profile: raw.profile.clone(),
     };
     build::build(&raw, &tree, &roles, tip, import)
 }

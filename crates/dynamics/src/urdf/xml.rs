@@ -67,6 +67,8 @@ pub(super) struct Raw {
     pub link_index: HashMap<String, usize>,
     /// The file declares identified inertial parameters (`<osrl identified_inertias="true"/>`).
     pub identified_inertias: bool,
+    /// The robot profile of an `<osrl_profile .../>` element, if the file has one.
+    pub profile: Option<crate::profile::RobotProfile>,
 }
 
 /// Parses the document: every element is read once, names are looked up in hash maps.
@@ -99,7 +101,15 @@ pub(super) fn read(text: &str) -> Result<Raw> {
         identified_inertias: robot
             .children()
             .any(|c| c.has_tag_name("osrl") && c.attribute("identified_inertias") == Some("true")),
+        profile: None,
     };
+    let mut profiles = robot.children().filter(|c| c.has_tag_name("osrl_profile"));
+    if let Some(node) = profiles.next() {
+        if profiles.next().is_some() {
+            return err("more than one <osrl_profile> element".into());
+        }
+        raw.profile = Some(super::profile_xml::read(node)?);
+    }
     read_links(robot, &mut raw)?;
     for j in robot.children().filter(|c| c.has_tag_name("joint")) {
         if raw.joints.len() == MAX_JOINTS {
