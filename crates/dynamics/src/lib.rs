@@ -48,7 +48,7 @@ pub use model::{
     MAX_DOF,
 };
 pub use rnea::{gravity, nonlinear_effects, rnea};
-pub use sim::{FrictionScheme, Measurement, Robot, SimConfig, SimRobot};
+pub use sim::{FrictionScheme, Measurement, Robot, SimConfig, SimRobot, MAX_SUBSTEPS};
 pub use spatial::Pose;
 
 /// Everything an operational space controller reads, in one call: kinematics (`ee_pos`,

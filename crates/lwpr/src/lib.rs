@@ -23,7 +23,7 @@ mod validate;
 
 pub use config::{Kernel, LwprConfig, MetricInit, PruneRule};
 pub use error::{LwprError, MAX_NORMALISED};
-pub use io::{write_atomic, FORMAT_VERSION, MAGIC};
+pub use io::{FORMAT_VERSION, MAGIC, MAX_MODEL_BYTES};
 pub use model::{Lwpr, UpdateInfo, Warnings};
 pub use norm::{Norm, NormKeyword, NORM_RANGE};
 pub use params::Params;

@@ -43,8 +43,8 @@ impl Table {
 
     fn read_with(path: &Path, finite_only: bool) -> Result<Table> {
         let file = path.display();
-        let bytes =
-            std::fs::read(path).map_err(|e| ReportError::Csv(format!("reading {file}: {e}")))?;
+        let bytes = osrl_files::read_limited(path, crate::error::MAX_READ_BYTES)
+            .map_err(|e| ReportError::Csv(format!("reading {e}")))?;
         let text = std::str::from_utf8(&bytes).map_err(|e| {
             let line = bytes[..e.valid_up_to()]
                 .iter()
@@ -167,6 +167,8 @@ pub fn write(path: &Path, head: &[String], rows: impl Iterator<Item = Vec<f64>>)
         crate::error::create_dir(dir)?;
     }
     let io = |e| ReportError::io(path, e);
+    // Streamed (a long run's series is large): checked first, as `osrl_files` writes.
+    osrl_files::check_output(path)?;
     let file = std::fs::File::create(path).map_err(io)?;
     let mut w = std::io::BufWriter::new(file);
     writeln!(w, "{}", head.join(",")).map_err(io)?;

@@ -1,7 +1,7 @@
 //! `osrl dynamics`: kinematics and dynamics of a robot at one state.
 
 use crate::util::{load_robot, parse_vec, print_json, rows};
-use anyhow::Result;
+use anyhow::{bail, Result};
 use osrl_dynamics::{compute_all, forward_dynamics, rnea};
 
 #[derive(clap::Args)]
@@ -24,6 +24,31 @@ pub struct Args {
     /// Only the JSON line.
     #[arg(long)]
     pub json: bool,
+}
+
+/// Every number of the result finite (JSON has no NaN or infinity: they would print as null).
+fn check_finite(out: &serde_json::Value) -> Result<()> {
+    fn has_null(v: &serde_json::Value) -> bool {
+        match v {
+            serde_json::Value::Null => true,
+            serde_json::Value::Array(a) => a.iter().any(has_null),
+            _ => false,
+        }
+    }
+    let bad: Vec<&str> = out
+        .as_object()
+        .into_iter()
+        .flatten()
+        .filter(|(_, v)| has_null(v))
+        .map(|(k, _)| k.as_str())
+        .collect();
+    if !bad.is_empty() {
+        bail!(
+            "{} not finite at this state: --q, --qd, --qdd or --u is too large",
+            bad.join(", ")
+        );
+    }
+    Ok(())
 }
 
 pub fn run(a: Args) -> Result<()> {
@@ -57,6 +82,7 @@ pub fn run(a: Args) -> Result<()> {
             .as_slice()
             .into();
     }
+    check_finite(&out)?;
     if !a.json {
         println!("{}: x = {:?}", model.name(), data.ee_pos.as_slice());
     }

@@ -5,7 +5,7 @@
 //! or `--quick`); training runs go in parallel on all cores, one progress bar each.
 
 use crate::progress::Bars;
-use anyhow::{bail, Context, Result};
+use anyhow::{bail, Result};
 use osrl_experiments::Sizes;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -19,7 +19,7 @@ pub struct Args {
     #[arg(long)]
     pub quick: bool,
     /// Training seeds of the learned controller per robot (default 3, 2 with --quick).
-    #[arg(long)]
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=100))]
     pub seeds: Option<u64>,
 }
 
@@ -27,7 +27,16 @@ pub fn run(a: Args) -> Result<()> {
     let wall = Instant::now();
     let out = &a.out;
     // Check the output before the long work.
-    std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
+    crate::util::check_out_dir(
+        "--out",
+        out,
+        &["index.html", "results.json", "figures.json"],
+    )?;
+    crate::util::check_out_dir(
+        "--out",
+        &out.join("models"),
+        &["planar3.osrl", "sarcos7.osrl"],
+    )?;
     let mut sizes = if a.quick {
         Sizes::quick()
     } else {
@@ -45,7 +54,8 @@ pub fn run(a: Args) -> Result<()> {
         eprintln!("training run {job} failed: {e}");
     }
     for (robot, model) in &rep.models {
-        model.save(&out.join("models").join(format!("{robot}.osrl")))?;
+        let path = out.join("models").join(format!("{robot}.osrl"));
+        crate::util::save_result("trained model", &path, &model.to_bytes()?)?;
     }
     osrl_report::write_report(out, &rep)?;
     eprintln!(
