@@ -103,9 +103,17 @@ pub fn save_result(what: &str, path: &Path, bytes: &[u8]) -> Result<()> {
 /// ``FILE:LINE:COLUMN: `that line`: message`` (one line; the position of the offending value).
 pub fn read_toml<T: serde::de::DeserializeOwned>(path: &Path) -> Result<T> {
     let text = osrl_files::read_text_limited(path, MAX_CONFIG_BYTES)?;
+    parse_toml(path, &text)
+}
+
+/// Parses TOML `text` into `T`, with errors as [`read_toml`] gives them (`path` names it).
+pub fn parse_toml<T: serde::de::DeserializeOwned>(path: &Path, text: &str) -> Result<T> {
     toml::from_str(&text).map_err(|e| {
         let at = e.span().map(|s| {
-            let start = s.start.min(text.len());
+            let mut start = s.start.min(text.len());
+            while !text.is_char_boundary(start) {
+                start -= 1;
+            }
             let line_start = text[..start].rfind('\n').map_or(0, |i| i + 1);
             let line_end = text[start..].find('\n').map_or(text.len(), |i| start + i);
             let line = text[..start].matches('\n').count() + 1;
