@@ -108,7 +108,7 @@ pub fn read_toml<T: serde::de::DeserializeOwned>(path: &Path) -> Result<T> {
 
 /// Parses TOML `text` into `T`, with errors as [`read_toml`] gives them (`path` names it).
 pub fn parse_toml<T: serde::de::DeserializeOwned>(path: &Path, text: &str) -> Result<T> {
-    toml::from_str(&text).map_err(|e| {
+    toml::from_str(text).map_err(|e| {
         let at = e.span().map(|s| {
             let mut start = s.start.min(text.len());
             while !text.is_char_boundary(start) {

@@ -20,7 +20,7 @@ pub const MAX_RUN_STEPS: usize = 500_000;
 pub fn run_steps(seconds: f64, dt: f64) -> Result<usize> {
     let max = MAX_RUN_STEPS as f64 * dt;
     let steps = (seconds / dt).round();
-    if !(seconds > 0.0 && steps <= MAX_RUN_STEPS as f64) || !dt.is_finite() || dt <= 0.0 {
+    if !(seconds > 0.0 && steps <= MAX_RUN_STEPS as f64 && dt.is_finite()) || dt <= 0.0 {
         return Err(ControlError::InvalidConfig(format!(
             "seconds = {seconds:?}: accepted range 0 < seconds ≤ {max:?} s (at most {MAX_RUN_STEPS} \
              control steps of {dt:?} s)"

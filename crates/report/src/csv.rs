@@ -54,7 +54,7 @@ impl Table {
     /// [`ReportError::Csv`] naming the line, and for a bad cell its column and text.
     pub fn parse(path: &Path, bytes: &[u8], finite_only: bool) -> Result<Table> {
         let file = path.display();
-        let text = std::str::from_utf8(&bytes).map_err(|e| {
+        let text = std::str::from_utf8(bytes).map_err(|e| {
             let line = bytes[..e.valid_up_to()]
                 .iter()
                 .filter(|&&b| b == b'\n')

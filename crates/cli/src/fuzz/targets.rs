@@ -7,15 +7,17 @@ use osrl_learn::SavedModel;
 use std::path::Path;
 
 type Outcome = Result<&'static str, String>;
+/// The range of an input to mutate alone.
+type Part = fn(&[u8]) -> std::ops::Range<usize>;
 
 /// A loader: its name, the folder of its corpus under `fuzz/corpus/`, and the function.
 pub struct Target {
     pub name: &'static str,
     pub run: fn(&[u8]) -> Outcome,
     /// Makes a mutated binary input pass its checksums (so the checks behind them are reached).
-    pub fix: Option<fn(&mut Vec<u8>)>,
+    pub fix: Option<fn(&mut [u8])>,
     /// The part of an input worth mutating alone half of the time (a saved model's info JSON).
-    pub part: Option<fn(&[u8]) -> std::ops::Range<usize>>,
+    pub part: Option<Part>,
 }
 
 pub const TARGETS: [Target; 9] = [
@@ -196,7 +198,7 @@ fn fnv1a(bytes: &[u8]) -> u64 {
 }
 
 /// LWPR file: magic 8, version 4, length 8, payload, checksum 8 (length and checksum redone).
-fn fix_lwpr(v: &mut Vec<u8>) {
+fn fix_lwpr(v: &mut [u8]) {
     if v.len() < 28 {
         return;
     }
@@ -209,7 +211,7 @@ fn fix_lwpr(v: &mut Vec<u8>) {
 /// Saved model: header 28 with the info's length and checksum, the info JSON, then the
 /// learner (magic 8, version 4, length 8, checksum 8, payload). The info's extent is found
 /// at the learner's magic; both lengths and checksums are redone.
-fn fix_saved(v: &mut Vec<u8>) {
+fn fix_saved(v: &mut [u8]) {
     let Some(at) = v.windows(8).rposition(|w| w == osrl_learn::io::MAGIC) else {
         return;
     };
