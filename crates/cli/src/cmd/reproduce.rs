@@ -43,9 +43,6 @@ pub fn run(a: Args) -> Result<()> {
         Sizes::full()
     };
     if let Some(s) = a.seeds {
-        if s == 0 {
-            bail!("--seeds must be at least 1");
-        }
         sizes.learned_seeds = s;
     }
     let bars = Bars::new(&sizes);
@@ -53,9 +50,15 @@ pub fn run(a: Args) -> Result<()> {
     for (job, e) in &rep.failed {
         eprintln!("training run {job} failed: {e}");
     }
+    // A model that cannot be saved where asked is saved next to it; the report is written
+    // all the same, and the command fails at the end saying where the model went.
+    let mut unsaved = Vec::new();
     for (robot, model) in &rep.models {
         let path = out.join("models").join(format!("{robot}.osrl"));
-        crate::util::save_result("trained model", &path, &model.to_bytes()?)?;
+        if let Err(e) = crate::util::save_result("trained model", &path, &model.to_bytes()?) {
+            eprintln!("error: {e:#}");
+            unsaved.push(robot.to_string());
+        }
     }
     osrl_report::write_report(out, &rep)?;
     eprintln!(
@@ -63,5 +66,11 @@ pub fn run(a: Args) -> Result<()> {
         out.join("index.html").display(),
         wall.elapsed().as_secs_f64()
     );
+    if !unsaved.is_empty() {
+        bail!(
+            "the models of {} were not saved in models/ (see above)",
+            unsaved.join(", ")
+        );
+    }
     Ok(())
 }
