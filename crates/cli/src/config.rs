@@ -34,6 +34,8 @@ use std::path::Path;
 
 /// Longest training run (simulated minutes, `train.minutes`, `--minutes`): about a week.
 pub const MAX_TRAIN_MINUTES: f64 = 10_000.0;
+/// Most integration steps per control period (`[sim] substeps`) of the commands.
+pub const MAX_SUBSTEPS: usize = 100;
 /// Most evaluations of one training run (`train.eval_every_minutes`).
 pub const MAX_EVALUATIONS: usize = 1000;
 
@@ -116,6 +118,12 @@ impl Config {
     pub fn validate(&self) -> Result<()> {
         self.controller.validate()?;
         self.sim.validate()?;
+        if self.sim.substeps > MAX_SUBSTEPS {
+            bail!(
+                "[sim] substeps = {}: accepted range 1–{MAX_SUBSTEPS}",
+                self.sim.substeps
+            );
+        }
         let dt = self.sim.control_period;
         if !osrl_learn::CONTROL_PERIOD_RANGE.contains(&dt) {
             bail!(

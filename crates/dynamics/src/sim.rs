@@ -131,8 +131,9 @@ impl Default for SimConfig {
     }
 }
 
-/// Most integration steps per control period ([`SimConfig::substeps`]).
-pub const MAX_SUBSTEPS: usize = 100;
+/// Most integration steps per control period ([`SimConfig::substeps`]): fine enough for a
+/// reference solution (0.2 µs steps at 2 ms); the `osrl` commands accept at most 100.
+pub const MAX_SUBSTEPS: usize = 10_000;
 
 impl SimConfig {
     /// Checks ranges: positive period, at least one substep, non-negative noise levels.

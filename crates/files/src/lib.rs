@@ -40,6 +40,9 @@ pub enum FileError {
         kind: &'static str,
         why: &'static str,
     },
+    /// The folder an output file would go in does not exist.
+    #[error("{path}: the folder does not exist")]
+    MissingFolder { path: String },
     /// A file larger than its limit.
     #[error("{path}: {size} bytes, at most {limit} are accepted")]
     TooLarge { path: String, size: u64, limit: u64 },
@@ -159,6 +162,11 @@ fn probe_folder(dir: &Path) -> Result<()> {
                 path: dir.display().to_string(),
                 kind: kind(&m),
                 why: "a folder is needed here",
+            })
+        }
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            return Err(FileError::MissingFolder {
+                path: dir.display().to_string(),
             })
         }
         Err(e) => return Err(io(dir, "use the folder")(e)),

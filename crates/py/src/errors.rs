@@ -45,6 +45,7 @@ pub fn file_err(e: osrl_files::FileError) -> PyErr {
         osrl_files::FileError::NotRegular {
             kind: "directory", ..
         } => ErrorKind::IsADirectory,
+        osrl_files::FileError::MissingFolder { .. } => ErrorKind::NotFound,
         _ => ErrorKind::Other,
     };
     PyErr::from(Error::new(kind, e.to_string()))

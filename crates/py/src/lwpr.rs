@@ -12,7 +12,7 @@ use lwpr::{Lwpr, LwprError, MAX_NORMALISED};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyTuple};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// An incremental LWPR model mapping `n_in` inputs to `n_out` outputs (see `python/osrl/_osrl.pyi`
 /// for the Python documentation).

@@ -126,7 +126,8 @@ fn fit(a: FitArgs) -> Result<()> {
         );
     };
     if let Some(p) = &a.save {
-        util::check_out_file("--save", p)?;
+        // A missing folder is an error here (as before): it is not created.
+        osrl_files::check_output(p).context("--save")?;
     }
     let n_out = cols - k;
     let mut cfg: LwprConfig = match &a.config {
