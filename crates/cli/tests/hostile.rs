@@ -138,3 +138,20 @@ fn untrained_model() -> osrl_learn::SavedModel {
     };
     osrl_learn::SavedModel::new(info, learner).unwrap()
 }
+
+#[test]
+fn lwpr_fit_on_twenty_thousand_columns_is_refused_before_allocating() {
+    let d = scratch("wide");
+    let n = 20_000;
+    let head: Vec<String> = (0..n).map(|i| format!("c{i}")).collect();
+    let row: Vec<String> = (0..n).map(|i| (i % 7).to_string()).collect();
+    let text = format!("{}\n{}\n{}\n", head.join(","), row.join(","), row.join(","));
+    let csv = write(&d, "wide.csv", &text);
+    let k = (n - 1).to_string();
+    refused(
+        &[
+            "lwpr", "fit", "--train", &csv, "--test", &csv, "--inputs", &k,
+        ],
+        &["19999 inputs", "accepted 1–1000"],
+    );
+}

@@ -166,11 +166,20 @@ fn lwpr_model(b: &[u8]) -> Outcome {
 
 fn csv(b: &[u8]) -> Outcome {
     let series = osrl_report::csv::Table::parse(Path::new("fuzz.csv"), b, false).is_ok();
-    osrl_report::csv::Table::parse(Path::new("fuzz.csv"), b, true).map_err(err)?;
+    let t = osrl_report::csv::Table::parse(Path::new("fuzz.csv"), b, true).map_err(err)?;
+    // As `osrl lwpr fit --inputs K` with the last column as the output.
+    let k = t.names.len() - 1;
+    if k == 0 {
+        return Ok("table of one column");
+    }
+    let mut m = lwpr::Lwpr::new(k, 1, &lwpr::LwprConfig::default()).map_err(err)?;
+    for row in t.rows.iter().take(3) {
+        m.update(&row[..k], &row[k..]).map_err(err)?;
+    }
     Ok(if series {
-        "table"
+        "fitted"
     } else {
-        "table, not a series"
+        "fitted, not a series"
     })
 }
 
