@@ -25,13 +25,20 @@
 //! ```
 
 use crate::robot_entry::RobotEntry;
-use anyhow::{bail, Result};
+use anyhow::{bail, Context, Result};
 use osrl_control::{ModelError, OscConfig, TrajectoryConfig};
 use osrl_dynamics::SimConfig;
 use osrl_learn::train::TrainConfig;
 use osrl_learn::LearnerConfig;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
+
+/// Longest training run (simulated minutes, `train.minutes`, `--minutes`): about a week.
+pub const MAX_TRAIN_MINUTES: f64 = 10_000.0;
+/// Most integration steps per control period (`[sim] substeps`) of the commands.
+pub const MAX_SUBSTEPS: usize = 100;
+/// Most evaluations of one training run (`train.eval_every_minutes`).
+pub const MAX_EVALUATIONS: usize = 1000;
 
 /// Settings of `osrl simulate`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -115,25 +122,49 @@ impl Config {
     pub fn validate(&self) -> Result<()> {
         self.controller.validate()?;
         self.sim.validate()?;
-        self.model_error.validate()?;
-        let t = &self.train;
-        if !(t.minutes > 0.0 && t.minutes.is_finite()) {
-            bail!("train.minutes must be a positive number, got {}", t.minutes);
-        }
-        if !(t.eval_every_minutes >= 0.0 && t.eval_every_minutes.is_finite()) {
+        if self.sim.substeps > MAX_SUBSTEPS {
             bail!(
-                "train.eval_every_minutes must be ≥ 0, got {}",
-                t.eval_every_minutes
+                "[sim] substeps = {}: accepted range 1–{MAX_SUBSTEPS}",
+                self.sim.substeps
             );
         }
-        if !(t.babble.minutes >= 0.0 && t.babble.minutes.is_finite()) {
-            bail!("train.babble.minutes must be ≥ 0, got {}", t.babble.minutes);
+        let dt = self.sim.control_period;
+        if !osrl_learn::CONTROL_PERIOD_RANGE.contains(&dt) {
+            bail!(
+                "[sim] control_period = {dt:?} s: accepted range {:?}–{:?} s",
+                osrl_learn::CONTROL_PERIOD_RANGE.start(),
+                osrl_learn::CONTROL_PERIOD_RANGE.end()
+            );
+        }
+        self.model_error.validate()?;
+        let t = &self.train;
+        if !(t.minutes > 0.0 && t.minutes <= MAX_TRAIN_MINUTES) {
+            bail!(
+                "train.minutes (--minutes) = {:?}: accepted range 0 < minutes ≤ {MAX_TRAIN_MINUTES}",
+                t.minutes
+            );
+        }
+        let min_every = t.minutes / MAX_EVALUATIONS as f64;
+        if !(t.eval_every_minutes == 0.0
+            || (t.eval_every_minutes >= min_every && t.eval_every_minutes.is_finite()))
+        {
+            bail!(
+                "train.eval_every_minutes = {:?}: accepted 0 (only at the end) or {min_every:?} to \
+                 any finite number (at most {MAX_EVALUATIONS} evaluations in {} minutes)",
+                t.eval_every_minutes,
+                t.minutes
+            );
+        }
+        if !(t.babble.minutes >= 0.0 && t.babble.minutes <= MAX_TRAIN_MINUTES) {
+            bail!(
+                "train.babble.minutes = {:?}: accepted range 0–{MAX_TRAIN_MINUTES}",
+                t.babble.minutes
+            );
         }
         t.gains.validate()?;
         let s = self.simulate.seconds;
-        if !(s > 0.0 && s.is_finite()) {
-            bail!("simulate.seconds must be a positive number, got {s}");
-        }
+        osrl_control::run_steps(s, self.sim.control_period)
+            .context("[simulate] seconds (--seconds)")?;
         Ok(())
     }
 }

@@ -5,9 +5,16 @@
 
 mod cmd;
 mod config;
+#[cfg(test)]
+mod fuzz;
 mod progress;
 mod robot_entry;
 mod util;
+
+/// The fuzz run's allocator: it bounds what one case may allocate (`fuzz/guard.rs`).
+#[cfg(test)]
+#[global_allocator]
+static ALLOC: fuzz::Bounded = fuzz::Bounded;
 
 use clap::{Parser, Subcommand};
 

@@ -64,14 +64,56 @@ pub fn std_dev(rows: &[Vec<f64>], col: usize) -> f64 {
     (rows.iter().map(|r| (r[col] - mean).powi(2)).sum::<f64>() / n).sqrt()
 }
 
+/// Largest config file read (16 MiB).
+pub const MAX_CONFIG_BYTES: u64 = 16 << 20;
+
+/// Checks, before any work, that `flag`'s `path` can be written as a file
+/// ([`osrl_files::check_output`]); a missing folder is created.
+pub fn check_out_file(flag: &str, path: &Path) -> Result<()> {
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        if std::fs::symlink_metadata(dir).is_err() {
+            std::fs::create_dir_all(dir)
+                .with_context(|| format!("{flag} {}: creating its folder", path.display()))?;
+        }
+    }
+    osrl_files::check_output(path).context(flag.to_string())
+}
+
+/// Checks, before any work, that `flag`'s folder `dir` can hold `files`
+/// ([`osrl_files::check_output_dir`]; a missing folder is created).
+pub fn check_out_dir(flag: &str, dir: &Path, files: &[&str]) -> Result<()> {
+    osrl_files::check_output_dir(dir, files).context(flag.to_string())
+}
+
+/// Writes `bytes`, the result of a long run, to `path`, or else next to it under a fresh name
+/// ([`osrl_files::write_or_fallback`]). A fallback is an error that says where the result is.
+pub fn save_result(what: &str, path: &Path, bytes: &[u8]) -> Result<()> {
+    let w = osrl_files::write_or_fallback(path, bytes)
+        .with_context(|| format!("saving the {what} to {}", path.display()))?;
+    match w.failed {
+        None => Ok(()),
+        Some(e) => bail!(
+            "saving the {what}: {e}; it was written to {} instead",
+            w.path.display()
+        ),
+    }
+}
+
 /// Reads a TOML file into `T`. A syntax or type error reads
 /// ``FILE:LINE:COLUMN: `that line`: message`` (one line; the position of the offending value).
 pub fn read_toml<T: serde::de::DeserializeOwned>(path: &Path) -> Result<T> {
-    let text =
-        std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
-    toml::from_str(&text).map_err(|e| {
+    let text = osrl_files::read_text_limited(path, MAX_CONFIG_BYTES)?;
+    parse_toml(path, &text)
+}
+
+/// Parses TOML `text` into `T`, with errors as [`read_toml`] gives them (`path` names it).
+pub fn parse_toml<T: serde::de::DeserializeOwned>(path: &Path, text: &str) -> Result<T> {
+    toml::from_str(text).map_err(|e| {
         let at = e.span().map(|s| {
-            let start = s.start.min(text.len());
+            let mut start = s.start.min(text.len());
+            while !text.is_char_boundary(start) {
+                start -= 1;
+            }
             let line_start = text[..start].rfind('\n').map_or(0, |i| i + 1);
             let line_end = text[start..].find('\n').map_or(text.len(), |i| start + i);
             let line = text[..start].matches('\n').count() + 1;

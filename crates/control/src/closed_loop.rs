@@ -8,6 +8,27 @@ use osrl_dynamics::{Measurement, Robot};
 use serde::{Deserialize, Serialize};
 use std::ops::ControlFlow;
 
+/// Most control steps of one recorded run ([`run_closed_loop`], an evaluation): the series is
+/// kept in memory (about 170 bytes a step for 7 joints), so a run's length is bounded.
+pub const MAX_RUN_STEPS: usize = 500_000;
+
+/// The number of control steps of `seconds` at control period `dt`, checked: `seconds` must be
+/// positive, finite and at most [`MAX_RUN_STEPS`] steps long.
+///
+/// # Errors
+/// [`ControlError::InvalidConfig`] naming the value and the accepted range.
+pub fn run_steps(seconds: f64, dt: f64) -> Result<usize> {
+    let max = MAX_RUN_STEPS as f64 * dt;
+    let steps = (seconds / dt).round();
+    if !(seconds > 0.0 && steps <= MAX_RUN_STEPS as f64 && dt.is_finite()) || dt <= 0.0 {
+        return Err(ControlError::InvalidConfig(format!(
+            "seconds = {seconds:?}: accepted range 0 < seconds ≤ {max:?} s (at most {MAX_RUN_STEPS} \
+             control steps of {dt:?} s)"
+        )));
+    }
+    Ok(steps as usize)
+}
+
 /// Time series of one run, one row per control step (row-major flat vectors).
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Series {
@@ -224,6 +245,7 @@ where
         });
     }
     let period = traj.period();
+    run_steps(seconds, dt)?;
     let steps = (seconds / dt).round();
     let per_period = traj.steps_per_period(dt);
     let periods = if steps.is_finite() && steps >= 0.0 {

@@ -39,7 +39,8 @@ mod trajectory_config;
 mod warp;
 
 pub use closed_loop::{
-    drive, run_closed_loop, Ended, Metrics, Run, Series, StepObserver, StepView,
+    drive, run_closed_loop, run_steps, Ended, Metrics, Run, Series, StepObserver, StepView,
+    MAX_RUN_STEPS,
 };
 pub use config::{Law, MetricKind, OscConfig};
 pub use controller::TaskController;

@@ -50,7 +50,7 @@ pub use model::{
 };
 pub use profile::{PathPlacement, RobotProfile};
 pub use rnea::{gravity, nonlinear_effects, rnea};
-pub use sim::{FrictionScheme, Measurement, Robot, SimConfig, SimRobot};
+pub use sim::{FrictionScheme, Measurement, Robot, SimConfig, SimRobot, MAX_SUBSTEPS};
 pub use spatial::Pose;
 
 /// Everything an operational space controller reads, in one call: kinematics (`ee_pos`,

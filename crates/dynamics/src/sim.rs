@@ -131,6 +131,10 @@ impl Default for SimConfig {
     }
 }
 
+/// Most integration steps per control period ([`SimConfig::substeps`]): fine enough for a
+/// reference solution (0.2 µs steps at 2 ms); the `osrl` commands accept at most 100.
+pub const MAX_SUBSTEPS: usize = 10_000;
+
 impl SimConfig {
     /// Checks ranges: positive period, at least one substep, non-negative noise levels.
     pub fn validate(&self) -> Result<()> {
@@ -138,8 +142,11 @@ impl SimConfig {
         if !(self.control_period > 0.0 && self.control_period.is_finite()) {
             return bad("control_period must be a positive number of seconds");
         }
-        if self.substeps == 0 {
-            return bad("substeps must be at least 1");
+        if !(1..=MAX_SUBSTEPS).contains(&self.substeps) {
+            return Err(DynamicsError::InvalidConfig(format!(
+                "substeps = {}: accepted range 1–{MAX_SUBSTEPS}",
+                self.substeps
+            )));
         }
         let n = &self.sensor_noise;
         if [n.q, n.qd, n.x, n.xd, n.xdd, self.actuator_noise]

@@ -22,6 +22,9 @@ pub enum ExperimentError {
         path: String,
         source: std::io::Error,
     },
+    /// A path that is not a regular file, a file too large, or an I/O error (`osrl_files`).
+    #[error(transparent)]
+    File(#[from] osrl_files::FileError),
     /// A results file is not valid JSON of the expected layout.
     #[error("{path}: {source}")]
     Json {

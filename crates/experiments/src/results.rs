@@ -246,24 +246,19 @@ impl Results {
     /// Writes [`Results::to_json`] to `path`.
     ///
     /// # Errors
-    /// [`ExperimentError::Io`].
+    /// [`ExperimentError::File`].
     pub fn save(&self, path: &Path) -> Result<()> {
-        std::fs::write(path, self.to_json()?).map_err(|source| ExperimentError::Io {
-            path: path.display().to_string(),
-            source,
-        })
+        Ok(osrl_files::write_atomic(path, self.to_json()?.as_bytes())?)
     }
 
     /// Reads a `results.json`.
     ///
     /// # Errors
-    /// [`ExperimentError::Io`], or [`ExperimentError::Json`] for a file of another layout (a
+    /// [`ExperimentError::File`], or [`ExperimentError::Json`] for a file of another layout (a
     /// number written as `null` — a NaN — included).
     pub fn load(path: &Path) -> Result<Self> {
-        let text = std::fs::read_to_string(path).map_err(|source| ExperimentError::Io {
-            path: path.display().to_string(),
-            source,
-        })?;
+        // At most 256 MiB, a regular file (a FIFO would block).
+        let text = osrl_files::read_text_limited(path, 256 << 20)?;
         serde_json::from_str(&text).map_err(|source| ExperimentError::Json {
             path: path.display().to_string(),
             source,

@@ -115,10 +115,12 @@ impl Setup {
     }
 
     /// The set-up a saved model was trained in: its robot, trajectory, task gains, control
-    /// period and seed (the home posture is found on the trajectory again, as for training).
+    /// period and seed (the home posture is found on the trajectory again, as for training,
+    /// and must be the saved one).
     ///
     /// # Errors
-    /// As [`Setup::new`].
+    /// As [`Setup::new`], or a saved home posture that is not the one found on the trajectory
+    /// (more than 1e-6 rad apart).
     pub fn from_saved(saved: &SavedModel) -> Result<Self> {
         let info = saved.info();
         let sim = SimConfig {
@@ -130,13 +132,25 @@ impl Setup {
             seed: info.seed,
             ..TrainConfig::default()
         };
-        Self::from_model(
+        let setup = Self::from_model(
             info.robot.clone(),
             saved.robot().clone(),
             info.trajectory.clone(),
-        )?
-        .with_sim(sim)?
-        .with_train(train)
+        )?;
+        let apart = setup
+            .home
+            .iter()
+            .zip(&info.home)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        if !(apart <= 1e-6) || setup.home.len() != info.home.len() {
+            return Err(invalid(format!(
+                "home: the saved {:?} rad is not the posture at rest on the start of the training \
+                 path, {:?} rad",
+                info.home, setup.home
+            )));
+        }
+        setup.with_sim(sim)?.with_train(train)
     }
 
     /// This set-up along another trajectory (home found again on its start).

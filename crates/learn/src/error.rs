@@ -30,6 +30,10 @@ pub enum LearnError {
     /// A saved controller could not be read; the controller in memory is untouched.
     #[error("cannot load learned controller: {0}")]
     Load(String),
+    /// A model file that is not a regular file, too large, or cannot be read or written
+    /// (`osrl_files`; the message starts with the path).
+    #[error(transparent)]
+    File(#[from] osrl_files::FileError),
 }
 
 pub type Result<T> = std::result::Result<T, LearnError>;

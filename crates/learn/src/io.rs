@@ -119,18 +119,17 @@ impl Learner {
         Ok(learner)
     }
 
-    /// Writes [`Learner::to_bytes`] to `path` by [`lwpr::write_atomic`] (a failure or crash
-    /// leaves any old file whole and no temporary file).
+    /// Writes [`Learner::to_bytes`] to `path` by [`osrl_files::write_atomic`] (only over a
+    /// regular file or a missing path; a failure or crash leaves any old file whole and no
+    /// temporary file).
     pub fn save(&self, path: &std::path::Path) -> Result<()> {
         let bytes = self.to_bytes()?;
-        lwpr::write_atomic(path, &bytes)
-            .map_err(|e| LearnError::Load(format!("cannot write {}: {e}", path.display())))
+        Ok(osrl_files::write_atomic(path, &bytes)?)
     }
 
     /// Reads a learner saved by [`Learner::save`].
     pub fn load(path: &std::path::Path) -> Result<Learner> {
-        let bytes = std::fs::read(path)
-            .map_err(|e| LearnError::Load(format!("cannot read {}: {e}", path.display())))?;
+        let bytes = osrl_files::read_limited(path, crate::saved::MAX_MODEL_BYTES)?;
         Learner::from_bytes(&bytes)
             .map_err(|e| LearnError::Load(format!("{}: {e}", path.display())))
     }

@@ -53,6 +53,8 @@ pub const MODEL_VERSION: u32 = 1;
 pub const CONTROL_PERIOD_RANGE: RangeInclusive<f64> = 1e-4..=0.1;
 /// First bytes of the learner-only file of the two-file format before [`MODEL_VERSION`] 1
 /// (learner file plus a `MODEL.json` sidecar).
+/// Largest model file [`SavedModel::load`] reads (1 GiB).
+pub const MAX_MODEL_BYTES: u64 = 1 << 30;
 const OLD_LEARNER_MAGIC: &[u8] = b"OSRLLC";
 const HEADER: usize = 28;
 
@@ -302,25 +304,20 @@ impl SavedModel {
     }
 
     /// Writes [`SavedModel::to_bytes`] to `path` through a temporary file and a rename
-    /// ([`lwpr::write_atomic`]: a failure leaves any old file whole), creating its folder.
+    /// ([`osrl_files::write_atomic`]: only over a regular file or a missing path; a failure
+    /// leaves any old file whole), creating its folder.
     ///
     /// # Errors
-    /// [`LearnError::Load`] if `path` exists and is not a regular file, or on an I/O error.
+    /// [`LearnError::File`] if `path` exists and is not a regular file, or on an I/O error.
     pub fn save(&self, path: &Path) -> Result<()> {
-        let io =
-            |e: std::io::Error| LearnError::Load(format!("cannot write {}: {e}", path.display()));
-        if let Ok(meta) = std::fs::symlink_metadata(path) {
-            if !meta.is_file() {
-                return Err(LearnError::Load(format!(
-                    "{} exists and is not a regular file: not replaced",
-                    path.display()
-                )));
+        osrl_files::check_output(path).or_else(|e| match path.parent() {
+            // A missing folder is created; anything else is refused before it is.
+            Some(dir) if !dir.as_os_str().is_empty() && !dir.exists() => {
+                std::fs::create_dir_all(dir).map_err(|_| e)
             }
-        }
-        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-            std::fs::create_dir_all(dir).map_err(io)?;
-        }
-        lwpr::write_atomic(path, &self.to_bytes()?).map_err(io)
+            _ => Err(e),
+        })?;
+        Ok(osrl_files::write_atomic(path, &self.to_bytes()?)?)
     }
 
     /// Reads a model written by [`SavedModel::save`].
@@ -328,8 +325,7 @@ impl SavedModel {
     /// # Errors
     /// As [`SavedModel::from_bytes`], the message starting with the path.
     pub fn load(path: &Path) -> Result<Self> {
-        let bytes = std::fs::read(path)
-            .map_err(|e| LearnError::Load(format!("cannot read {}: {e}", path.display())))?;
+        let bytes = osrl_files::read_limited(path, MAX_MODEL_BYTES)?;
         Self::from_bytes(&bytes).map_err(|e| LearnError::Load(format!("{}: {e}", path.display())))
     }
 }

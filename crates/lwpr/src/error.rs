@@ -70,6 +70,10 @@ pub enum LwprError {
     /// also a `source`: error chains print it once).
     #[error("LWPR model file: {0}")]
     Io(std::io::Error),
+    /// A model file that is not a regular file, too large, or cannot be read or written
+    /// (`osrl_files`; the message starts with the path).
+    #[error(transparent)]
+    File(#[from] osrl_files::FileError),
 }
 
 impl From<std::io::Error> for LwprError {

@@ -30,41 +30,8 @@ fn fmt(msg: impl Into<String>) -> LwprError {
     LwprError::Format(msg.into())
 }
 
-/// Writes `bytes` to `path` through a new temporary file next to it and a rename, as `mv`
-/// does: a failure, or a crash (the data is synced before the rename), leaves any old file at
-/// `path` whole, and the temporary file is removed on failure. The temporary file is created
-/// exclusively (named after `path`, this process and a counter; an existing file or symbolic
-/// link of that name is never written through). The new file replaces whatever `path` was,
-/// with default permissions. Fails as the file system does (for example when `path` is a
-/// directory or its folder does not exist).
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    use std::io::Write;
-    static COUNTER: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
-    let mut tries = 0;
-    let (tmp, mut file) = loop {
-        let n = COUNTER.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-        let mut name = path.as_os_str().to_owned();
-        name.push(format!(".{}.{n}.tmp", std::process::id()));
-        let tmp = std::path::PathBuf::from(name);
-        match std::fs::OpenOptions::new()
-            .write(true)
-            .create_new(true)
-            .open(&tmp)
-        {
-            Ok(f) => break (tmp, f),
-            // Taken (by another file of that name): the next counter value.
-            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists && tries < 100 => tries += 1,
-            Err(e) => return Err(e),
-        }
-    };
-    let written = file.write_all(bytes).and_then(|()| file.sync_all());
-    drop(file);
-    let result = written.and_then(|()| std::fs::rename(&tmp, path));
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result
-}
+/// Largest model file [`Lwpr::load`] reads (1 GiB).
+pub const MAX_MODEL_BYTES: u64 = 1 << 30;
 
 impl Lwpr {
     /// The model as bytes (see the module docs for the layout).
@@ -111,15 +78,16 @@ impl Lwpr {
         Ok(m)
     }
 
-    /// Writes the model to `path` by [`write_atomic`]: a failure leaves any file at `path` as it
+    /// Writes the model to `path` by [`osrl_files::write_atomic`] (only over a regular file or a
+    /// missing path): a failure leaves any file at `path` as it
     /// was, and no temporary file behind.
     pub fn save(&self, path: impl AsRef<Path>) -> Result<(), LwprError> {
-        Ok(write_atomic(path.as_ref(), &self.to_bytes())?)
+        Ok(osrl_files::write_atomic(path.as_ref(), &self.to_bytes())?)
     }
 
     /// Reads a model saved by [`Lwpr::save`]. Any model in memory is unaffected by a failure.
     pub fn load(path: impl AsRef<Path>) -> Result<Lwpr, LwprError> {
-        Lwpr::from_bytes(&std::fs::read(path)?)
+        Lwpr::from_bytes(&osrl_files::read_limited(path.as_ref(), MAX_MODEL_BYTES)?)
     }
 
     /// Checks sizes, finiteness and ids after decoding.

@@ -23,7 +23,11 @@ mod validate;
 
 pub use config::{Kernel, LwprConfig, MetricInit, PruneRule};
 pub use error::{LwprError, MAX_NORMALISED};
-pub use io::{write_atomic, FORMAT_VERSION, MAGIC};
+pub use io::{FORMAT_VERSION, MAGIC, MAX_MODEL_BYTES};
+
+/// Most inputs, and most outputs, of a model ([`Lwpr::new`]): a receptive field holds
+/// `n_in × n_in` matrices.
+pub const MAX_DIMS: usize = 1000;
 pub use model::{Lwpr, UpdateInfo, Warnings};
 pub use norm::{Norm, NormKeyword, NORM_RANGE};
 pub use params::Params;

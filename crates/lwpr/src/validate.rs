@@ -122,6 +122,13 @@ impl Params {
         if n_in == 0 || n_out == 0 {
             return Err(bad("a model needs at least one input and one output"));
         }
+        if n_in > crate::MAX_DIMS || n_out > crate::MAX_DIMS {
+            // Each receptive field holds n_in × n_in matrices: beyond this, memory runs out.
+            return Err(bad(format!(
+                "{n_in} inputs and {n_out} outputs: accepted 1–{} of each",
+                crate::MAX_DIMS
+            )));
+        }
         let kdims = dims("kernel_dims", &cfg.kernel_dims, n_in)?;
         let rdims = dims("regression_dims", &cfg.regression_dims, n_in)?;
         let nk = kdims.len();

@@ -21,6 +21,7 @@ pub fn lwpr_err(e: lwpr::LwprError, path: Option<&Path>) -> PyErr {
     match e {
         lwpr::LwprError::NoActiveRf { .. } => NoSupportError::new_err(e.to_string()),
         lwpr::LwprError::Io(io) => io_err(io, path),
+        lwpr::LwprError::File(f) => file_err(f),
         lwpr::LwprError::Format(_) => match path {
             Some(p) => PyValueError::new_err(format!("{}: {e}", p.display())),
             None => PyValueError::new_err(e.to_string()),
@@ -33,6 +34,21 @@ pub fn lwpr_err(e: lwpr::LwprError, path: Option<&Path>) -> PyErr {
 /// of the wrong length or not finite, a model or URDF that is invalid, a singular mass matrix).
 pub fn dyn_err(e: osrl_dynamics::DynamicsError) -> PyErr {
     PyValueError::new_err(e.to_string())
+}
+
+/// A refused or failed file (`osrl_files`) as the `OSError` subclass Python would raise; its
+/// message names the file.
+pub fn file_err(e: osrl_files::FileError) -> PyErr {
+    use std::io::{Error, ErrorKind};
+    let kind = match &e {
+        osrl_files::FileError::Io { source, .. } => source.kind(),
+        osrl_files::FileError::NotRegular {
+            kind: "directory", ..
+        } => ErrorKind::IsADirectory,
+        osrl_files::FileError::MissingFolder { .. } => ErrorKind::NotFound,
+        _ => ErrorKind::Other,
+    };
+    PyErr::from(Error::new(kind, e.to_string()))
 }
 
 /// A file-system error as the `OSError` subclass Python would raise, naming the file.

@@ -7,12 +7,12 @@
 use crate::arrays::{matrix, out1, out2, read_into, Matrix};
 use crate::arrays::{Arr1, Arr2};
 use crate::config;
-use crate::errors::{io_err, lwpr_err};
+use crate::errors::lwpr_err;
 use lwpr::{Lwpr, LwprError, MAX_NORMALISED};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyTuple};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// An incremental LWPR model mapping `n_in` inputs to `n_out` outputs (see `python/osrl/_osrl.pyi`
 /// for the Python documentation).
@@ -87,25 +87,6 @@ fn check_scale(
     Err(PyValueError::new_err(format!(
         "row {row}: {e}; nothing was changed"
     )))
-}
-
-/// Fails with a clear error when `path` exists and is not a regular file (a folder, a symbolic
-/// link, a device): saving never replaces those.
-fn check_save_path(path: &Path) -> PyResult<()> {
-    match std::fs::symlink_metadata(path) {
-        Ok(m) if m.is_dir() => Err(io_err(
-            std::io::Error::new(
-                std::io::ErrorKind::IsADirectory,
-                "is a folder, need a file name",
-            ),
-            Some(path),
-        )),
-        Ok(m) if !m.file_type().is_file() => Err(io_err(
-            std::io::Error::other("is not a regular file (a link or a device): not replaced"),
-            Some(path),
-        )),
-        _ => Ok(()),
-    }
 }
 
 #[pymethods]
@@ -290,7 +271,8 @@ impl PyLwpr {
     /// Writes the model to `path` (a new file renamed into place; a failure leaves any old
     /// file whole). Refuses to replace a folder, a link or a device. Releases the GIL.
     fn save(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
-        check_save_path(&path)?;
+        // `osrl_files::write_atomic` refuses a folder, a link or a device (IsADirectoryError,
+        // OSError) before writing.
         let model = &self.model;
         py.detach(|| model.save(&path))
             .map_err(|e| lwpr_err(e, Some(&path)))

@@ -5,7 +5,7 @@
 
 use crate::arrays::{out1, out2, vector};
 use crate::arrays::{Arr1, Arr2};
-use crate::errors::{dyn_err, io_err};
+use crate::errors::{dyn_err, file_err};
 use osrl_dynamics::{self as dynamics, robots, urdf, Data, Model};
 use pyo3::exceptions::PyNotImplementedError;
 use pyo3::prelude::*;
@@ -69,7 +69,9 @@ impl PyRobot {
     #[pyo3(signature = (path, tip = None))]
     fn from_urdf(path: PathBuf, tip: Option<String>) -> PyResult<Self> {
         refuse_tip(tip)?;
-        let text = std::fs::read_to_string(&path).map_err(|e| io_err(e, Some(&path)))?;
+        // A regular file within the URDF size limit (a FIFO would block).
+        let text =
+            osrl_files::read_text_limited(&path, urdf::MAX_URDF_BYTES as u64).map_err(file_err)?;
         let model = urdf::parse_urdf(&text).map_err(|e| {
             pyo3::exceptions::PyValueError::new_err(format!("{}: {e}", path.display()))
         })?;

@@ -42,10 +42,19 @@ impl Table {
     }
 
     fn read_with(path: &Path, finite_only: bool) -> Result<Table> {
+        let bytes = osrl_files::read_limited(path, crate::error::MAX_READ_BYTES)
+            .map_err(|e| ReportError::Csv(format!("reading {e}")))?;
+        Self::parse(path, &bytes, finite_only)
+    }
+
+    /// The table in `bytes`, as [`Table::read`] (or [`Table::read_series`] unless
+    /// `finite_only`) reads a file; `path` names it in errors.
+    ///
+    /// # Errors
+    /// [`ReportError::Csv`] naming the line, and for a bad cell its column and text.
+    pub fn parse(path: &Path, bytes: &[u8], finite_only: bool) -> Result<Table> {
         let file = path.display();
-        let bytes =
-            std::fs::read(path).map_err(|e| ReportError::Csv(format!("reading {file}: {e}")))?;
-        let text = std::str::from_utf8(&bytes).map_err(|e| {
+        let text = std::str::from_utf8(bytes).map_err(|e| {
             let line = bytes[..e.valid_up_to()]
                 .iter()
                 .filter(|&&b| b == b'\n')
@@ -81,11 +90,13 @@ impl Table {
         if names.iter().all(|n| n.parse::<f64>().is_ok()) {
             bail!("{file}:{hl}: the first line holds numbers: the CSV needs a header row of column names");
         }
+        // Linear in the number of columns (a hostile header may have millions).
+        let mut seen = std::collections::HashMap::with_capacity(names.len());
         for (j, n) in names.iter().enumerate() {
             if n.is_empty() {
                 bail!("{file}:{hl}: column {} has no name", j + 1);
             }
-            if let Some(k) = names[..j].iter().position(|m| m == n) {
+            if let Some(k) = seen.insert(n.as_str(), j) {
                 bail!(
                     "{file}:{hl}: columns {} and {} are both named '{n}'",
                     k + 1,
@@ -167,6 +178,8 @@ pub fn write(path: &Path, head: &[String], rows: impl Iterator<Item = Vec<f64>>)
         crate::error::create_dir(dir)?;
     }
     let io = |e| ReportError::io(path, e);
+    // Streamed (a long run's series is large): checked first, as `osrl_files` writes.
+    osrl_files::check_output(path)?;
     let file = std::fs::File::create(path).map_err(io)?;
     let mut w = std::io::BufWriter::new(file);
     writeln!(w, "{}", head.join(",")).map_err(io)?;

@@ -21,6 +21,9 @@ pub enum ReportError {
     /// A report folder lacks what its page is drawn from, or holds something else.
     #[error("{0}")]
     Folder(String),
+    /// A path that is not a regular file, a file too large, or an I/O error (`osrl_files`).
+    #[error(transparent)]
+    File(#[from] osrl_files::FileError),
     #[error(transparent)]
     Experiment(#[from] osrl_experiments::ExperimentError),
     #[error(transparent)]
@@ -47,7 +50,17 @@ pub(crate) fn create_dir(dir: &Path) -> Result<()> {
     std::fs::create_dir_all(dir).map_err(|e| ReportError::io(dir, e))
 }
 
-/// Writes `text` to `path`.
+/// Writes `text` to `path` ([`osrl_files::write_atomic`]: only over a regular file or a new
+/// path).
 pub(crate) fn write(path: &Path, text: &str) -> Result<()> {
-    std::fs::write(path, text).map_err(|e| ReportError::io(path, e))
+    Ok(osrl_files::write_atomic(path, text.as_bytes())?)
+}
+
+/// Largest data file of a report folder read back (`results.json`, `figures.json`, an SVG, a
+/// CSV time series): 1 GiB.
+pub const MAX_READ_BYTES: u64 = 1 << 30;
+
+/// Reads the text of `path`, a regular file of at most [`MAX_READ_BYTES`].
+pub(crate) fn read_text(path: &Path) -> Result<String> {
+    Ok(osrl_files::read_text_limited(path, MAX_READ_BYTES)?)
 }

@@ -97,7 +97,7 @@ impl Page {
     pub fn load(dir: &Path) -> Result<Self> {
         let results = Results::load(&dir.join("results.json"))?;
         let fpath = dir.join("figures.json");
-        let text = std::fs::read_to_string(&fpath).map_err(|e| ReportError::io(&fpath, e))?;
+        let text = crate::error::read_text(&fpath)?;
         let figures: FigureInputs = serde_json::from_str(&text)
             .map_err(|e| ReportError::Folder(format!("{}: {e}", fpath.display())))?;
         let sizes = &results.config.sizes;

@@ -2,7 +2,7 @@
 //! paper's claims, then per experiment a line on what it shows, its table and its figures
 //! (inline SVG, one caption each), and the whole `results.json`.
 
-use crate::error::{ReportError, Result};
+use crate::error::Result;
 use crate::summary::summary;
 use osrl_experiments::analytical::ROBOTS;
 use osrl_experiments::results::{Results, RunsSummary};
@@ -206,7 +206,7 @@ const HEAD: &str = "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>
 /// An SVG file's text without its XML declaration, to be inlined.
 fn inline_svg(out: &Path, file: &str) -> Result<String> {
     let path = out.join(file);
-    let svg = std::fs::read_to_string(&path).map_err(|e| ReportError::io(&path, e))?;
+    let svg = crate::error::read_text(&path)?;
     let svg = svg.trim_start_matches(|c| c != '<');
     let svg = svg
         .strip_prefix("<?xml")

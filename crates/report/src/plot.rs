@@ -273,6 +273,8 @@ pub fn save(fig: &Figure, dir: &Path, stem: &str) -> Result<Vec<PathBuf>> {
     crate::error::create_dir(dir)?;
     let svg = dir.join(format!("{stem}.svg"));
     let png = dir.join(format!("{stem}.png"));
+    osrl_files::check_output(&svg)?;
+    osrl_files::check_output(&png)?;
     let at = |p: &Path, e: ReportError| ReportError::Draw(format!("drawing {}: {e}", p.display()));
     render::to_svg(fig, &svg).map_err(|e| at(&svg, e))?;
     render::to_png(fig, &png).map_err(|e| at(&png, e))?;

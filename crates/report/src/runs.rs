@@ -8,6 +8,24 @@ use crate::series;
 use osrl_learn::eval::EvalSeries;
 use std::path::{Path, PathBuf};
 
+/// The files [`write_simulate`] writes into its folder (to check them before a run).
+pub const SIMULATE_FILES: [&str; 5] = [
+    "simulate.csv",
+    "path.svg",
+    "path.png",
+    "metrics.json",
+    "config.toml",
+];
+/// The files [`write_eval`] writes into its folder.
+pub const EVAL_FILES: [&str; 6] = [
+    "eval.csv",
+    "path.svg",
+    "path.png",
+    "commands.svg",
+    "commands.png",
+    "metrics.json",
+];
+
 /// `simulate.csv`, `path.svg/png`, `metrics.json` (pretty `metrics`) and `config.toml`
 /// (`config_toml`, the effective config) of a closed-loop run into `dir`; `axes` are the world
 /// axes of the task coordinates. Returns the files written.

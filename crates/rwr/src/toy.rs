@@ -19,6 +19,9 @@ pub use summary::{check_claims, summarize, CaseSummary, Claims, Report, Speedup}
 use crate::error::{Result, RwrError};
 use serde::{Deserialize, Serialize};
 
+/// Most samples a sweep may draw in all (`samples_per_iter × max_iters × seeds × tau0s`).
+pub const MAX_TOY_SAMPLES: u64 = 1_000_000_000;
+
 /// Problem constants, sampling and sweep of the Fig. 1 experiment. The defaults are fixed
 /// before looking at results: a tilted cost ellipse with an unavoidable state cost
 /// (`q = (1, −1, 0.5)`: `r = (a − s/2)² + s²/4`), an initial policy `θ_0 = (−1, 1)` that is
@@ -120,6 +123,24 @@ impl ToyConfig {
             return bad(format!(
                 "tau0s must be non-empty, finite and > 0, got {:?}",
                 self.tau0s
+            ));
+        }
+        let sizes = [
+            ("samples_per_iter", self.samples_per_iter as u64, 1_000_000),
+            ("max_iters", self.max_iters as u64, 100_000),
+            ("seeds", self.seeds, 10_000),
+            ("tau0s (entries)", self.tau0s.len() as u64, 1000),
+        ];
+        for (name, v, max) in sizes {
+            if v > max {
+                return bad(format!("{name} = {v}: accepted at most {max}"));
+            }
+        }
+        let work = sizes.iter().fold(1u64, |w, s| w.saturating_mul(s.1));
+        if work > MAX_TOY_SAMPLES {
+            return bad(format!(
+                "samples_per_iter × max_iters × seeds × tau0s = {work}: accepted at most \
+                 {MAX_TOY_SAMPLES} samples in a sweep"
             ));
         }
         Ok(())

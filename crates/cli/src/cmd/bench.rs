@@ -67,19 +67,19 @@ enum Embed {
 struct LwprArgs {
     /// Number of seeds of the cross tests (S..S+N with S = --first-seed); the report gives
     /// medians.
-    #[arg(long, default_value_t = 10)]
+    #[arg(long, default_value_t = 10, value_parser = clap::value_parser!(u64).range(1..=1000))]
     seeds: u64,
     /// First seed of the cross tests.
     #[arg(long, default_value_t = 0)]
     first_seed: u64,
     /// Training epochs of the 2-D cross test (the reference library's test: 20).
-    #[arg(long, default_value_t = 20)]
+    #[arg(long, default_value_t = 20, value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..=10_000))]
     cross2_epochs: usize,
     /// Training epochs of the 21-D cross test (issue 4: 25).
-    #[arg(long, default_value_t = 25)]
+    #[arg(long, default_value_t = 25, value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..=10_000))]
     cross21_epochs: usize,
     /// Runs per seed; the smallest times are kept (the results are identical).
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..=100))]
     repeat: usize,
     /// Only these tests (comma-separated); all by default.
     #[arg(long, value_enum, value_delimiter = ',')]
@@ -95,14 +95,14 @@ struct LwprArgs {
     #[arg(long, default_value_t = 21)]
     cross21_dim: usize,
     /// Robot data: number of random trajectories.
-    #[arg(long, default_value_t = 10)]
+    #[arg(long, default_value_t = 10, value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..=10_000))]
     traj: usize,
     /// Robot data: seconds per trajectory, 0.1–3600 (sampled at 100 Hz; a random 10 % is held
     /// out, at least 2 samples).
     #[arg(long, default_value_t = 5.0)]
     seconds: f64,
     /// Robot data: training epochs.
-    #[arg(long, default_value_t = 3)]
+    #[arg(long, default_value_t = 3, value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..=10_000))]
     epochs: usize,
     /// Robot data: initial distance metric `init_D = r·I` (inputs normalised).
     #[arg(long, default_value_t = 0.05)]

@@ -35,6 +35,9 @@ pub struct Args {
 /// Evaluates, prints, writes.
 pub fn run(a: Args) -> Result<()> {
     let saved = SavedModel::load(&a.model)?;
+    if let Some(dir) = &a.out {
+        crate::util::check_out_dir("--out", dir, &osrl_report::runs::EVAL_FILES)?;
+    }
     let mut setup = Setup::from_saved(&saved)?;
     if let Some(t) = &a.trajectory {
         let mut cfg = setup.trajectory_config().clone();
@@ -42,12 +45,16 @@ pub fn run(a: Args) -> Result<()> {
         setup = setup.with_trajectory(cfg)?;
     }
     let period = setup.trajectory().period();
+    let dt = setup.sim().control_period;
+    let max = osrl_control::MAX_RUN_STEPS as f64 * dt;
     let periods = match a.seconds {
         None => 2,
-        Some(s) if s.is_finite() && s >= 2.0 * period => (s / period + 1e-9).floor() as usize - 1,
+        Some(s) if s >= 2.0 * period && s <= max => (s / period + 1e-9).floor() as usize - 1,
         Some(s) => bail!(
-            "--seconds {s}: need at least two periods of the trajectory ({:.3} s)",
-            2.0 * period
+            "--seconds {s:?}: accepted range {:.3} s (two periods of the trajectory) to {max:?} s \
+             ({} control steps of {dt:?} s)",
+            2.0 * period,
+            osrl_control::MAX_RUN_STEPS
         ),
     };
     let setup = setup.with_eval_periods(periods)?;

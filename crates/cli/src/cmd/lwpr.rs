@@ -14,7 +14,7 @@ use osrl_report::csv::Table;
 use rand::seq::SliceRandom;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::Instant;
 
 /// LWPR: incremental locally weighted projection regression.
@@ -101,6 +101,11 @@ pub fn run(a: Args) -> Result<()> {
     }
 }
 
+/// Most passes over the training data (`--epochs`).
+const MAX_EPOCHS: usize = 100_000;
+/// Most updates of one fit (epochs × training rows).
+const MAX_UPDATES: usize = 1_000_000_000;
+
 /// At most this many update times are kept for the median (every n-th update beyond).
 const MAX_TIMINGS: usize = 1 << 20;
 
@@ -112,15 +117,17 @@ fn fit(a: FitArgs) -> Result<()> {
     if k == 0 || k >= cols {
         bail!("--inputs {k}: need 1 ≤ K < {cols} (the number of columns)");
     }
-    if a.epochs == 0 {
-        bail!("--epochs must be at least 1");
-    }
     let (e, n) = (a.epochs, train.rows.len());
-    let total = e
-        .checked_mul(n)
-        .with_context(|| format!("--epochs {e}: {e} × {n} rows is too many updates"))?;
+    let total = e.checked_mul(n).filter(|&t| t <= MAX_UPDATES);
+    let Some(total) = total.filter(|_| (1..=MAX_EPOCHS).contains(&e)) else {
+        bail!(
+            "--epochs {e}: accepted range 1–{MAX_EPOCHS}, and at most {MAX_UPDATES} updates \
+             (epochs × {n} training rows)"
+        );
+    };
     if let Some(p) = &a.save {
-        check_save_path(p)?;
+        // A missing folder is an error here (as before): it is not created.
+        osrl_files::check_output(p).context("--save")?;
     }
     let n_out = cols - k;
     let mut cfg: LwprConfig = match &a.config {
@@ -191,15 +198,17 @@ fn fit(a: FitArgs) -> Result<()> {
     }
     ev.report(&out, a.json);
     if let Some(p) = &a.save {
-        model
-            .save(p)
-            .with_context(|| format!("saving {} (the results above stand)", p.display()))?;
+        util::save_result("LWPR model (the results above stand)", p, &model.to_bytes())?;
     }
     Ok(())
 }
 
 fn eval(a: EvalArgs) -> Result<()> {
-    let mut model = Lwpr::load(&a.model).with_context(|| format!("{}", a.model.display()))?;
+    let mut model = Lwpr::load(&a.model).map_err(|e| match e {
+        // Its message starts with the path already.
+        lwpr::LwprError::File(f) => anyhow::Error::from(f),
+        e => anyhow::Error::from(e).context(a.model.display().to_string()),
+    })?;
     let test = Table::read(&a.test)?;
     let (k, n_out) = (model.n_in(), model.n_out());
     if test.names.len() != k + n_out {
@@ -211,24 +220,6 @@ fn eval(a: EvalArgs) -> Result<()> {
     }
     let ev = evaluate(&mut model, &test)?;
     ev.report(&ev.json(), a.json);
-    Ok(())
-}
-
-/// Fails early when a model could not be saved at `p`: a folder, or a file in a missing folder.
-fn check_save_path(p: &Path) -> Result<()> {
-    if p.is_dir() || p.as_os_str().to_string_lossy().ends_with(['/', '\\']) {
-        bail!("--save {}: is a folder, need a file name", p.display());
-    }
-    let parent = p.parent().filter(|d| !d.as_os_str().is_empty());
-    if let Some(d) = parent {
-        if !d.is_dir() {
-            bail!(
-                "--save {}: folder {} does not exist",
-                p.display(),
-                d.display()
-            );
-        }
-    }
     Ok(())
 }
 

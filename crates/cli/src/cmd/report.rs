@@ -33,6 +33,7 @@ pub fn run(a: Args) -> Result<()> {
     let page =
         Page::load(&dir).with_context(|| format!("reading the report folder {}", dir.display()))?;
     let out = a.out.unwrap_or(dir);
+    crate::util::check_out_dir("--out", &out, &["index.html"])?;
     render(&out, &page)?;
     println!("wrote {}", out.join("index.html").display());
     Ok(())

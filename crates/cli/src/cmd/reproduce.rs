@@ -5,7 +5,7 @@
 //! or `--quick`); training runs go in parallel on all cores, one progress bar each.
 
 use crate::progress::Bars;
-use anyhow::{bail, Context, Result};
+use anyhow::{bail, Result};
 use osrl_experiments::Sizes;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -19,7 +19,7 @@ pub struct Args {
     #[arg(long)]
     pub quick: bool,
     /// Training seeds of the learned controller per robot (default 3, 2 with --quick).
-    #[arg(long)]
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=100))]
     pub seeds: Option<u64>,
 }
 
@@ -27,16 +27,22 @@ pub fn run(a: Args) -> Result<()> {
     let wall = Instant::now();
     let out = &a.out;
     // Check the output before the long work.
-    std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
+    crate::util::check_out_dir(
+        "--out",
+        out,
+        &["index.html", "results.json", "figures.json"],
+    )?;
+    crate::util::check_out_dir(
+        "--out",
+        &out.join("models"),
+        &["planar3.osrl", "sarcos7.osrl"],
+    )?;
     let mut sizes = if a.quick {
         Sizes::quick()
     } else {
         Sizes::full()
     };
     if let Some(s) = a.seeds {
-        if s == 0 {
-            bail!("--seeds must be at least 1");
-        }
         sizes.learned_seeds = s;
     }
     let bars = Bars::new(&sizes);
@@ -44,8 +50,15 @@ pub fn run(a: Args) -> Result<()> {
     for (job, e) in &rep.failed {
         eprintln!("training run {job} failed: {e}");
     }
+    // A model that cannot be saved where asked is saved next to it; the report is written
+    // all the same, and the command fails at the end saying where the model went.
+    let mut unsaved = Vec::new();
     for (robot, model) in &rep.models {
-        model.save(&out.join("models").join(format!("{robot}.osrl")))?;
+        let path = out.join("models").join(format!("{robot}.osrl"));
+        if let Err(e) = crate::util::save_result("trained model", &path, &model.to_bytes()?) {
+            eprintln!("error: {e:#}");
+            unsaved.push(robot.to_string());
+        }
     }
     osrl_report::write_report(out, &rep)?;
     eprintln!(
@@ -53,5 +66,11 @@ pub fn run(a: Args) -> Result<()> {
         out.join("index.html").display(),
         wall.elapsed().as_secs_f64()
     );
+    if !unsaved.is_empty() {
+        bail!(
+            "the models of {} were not saved in models/ (see above)",
+            unsaved.join(", ")
+        );
+    }
     Ok(())
 }

@@ -125,6 +125,9 @@ pub fn run(a: Args) -> Result<()> {
         .map(PathBuf::from);
     let loaded = model_path.as_deref().map(SavedModel::load).transpose()?;
     let cfg = effective_config(&a, loaded.as_ref())?;
+    if let Some(dir) = &a.out {
+        crate::util::check_out_dir("--out", dir, &osrl_report::runs::SIMULATE_FILES)?;
+    }
     let setup = Setup::profiled(cfg.robot.name(), &cfg.robot.0, cfg.trajectory.clone())?
         .with_sim(cfg.sim.clone())?;
     let model = setup.model().clone();

@@ -5,7 +5,7 @@
 //! fixed vs adaptive), `toy_iterations.{svg,png}` (iterations to converge vs initial `τ`) and
 //! `toy.json` into `--out`; with `--json` the last stdout line is the report object.
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use osrl_experiments::toy;
 use osrl_report::figures::toy as figures;
 use rwr::toy::{check_claims, Report, ToyConfig, Variant};
@@ -43,14 +43,14 @@ fn load(a: &Args) -> Result<ToyConfig> {
 /// Runs the sweep (in parallel over cases × seeds), prints, plots, writes JSON.
 pub fn run(a: Args) -> Result<()> {
     let cfg = load(&a)?;
+    crate::util::check_out_dir("--out", &a.out, &["toy.json"])?;
     let report = toy::sweep(&cfg)?;
     print_table(&cfg, &report);
     let mut written = figures::iterations(&cfg, &report, &a.out)?;
     written.extend(figures::fig1(&toy::fig1(&cfg)?, &a.out)?);
     let json = serde_json::to_string(&report)?;
     let path = a.out.join("toy.json");
-    std::fs::write(&path, format!("{json}\n"))
-        .with_context(|| format!("writing {}", path.display()))?;
+    osrl_files::write_atomic(&path, format!("{json}\n").as_bytes())?;
     written.push(path);
     for p in &written {
         println!("wrote {}", p.display());

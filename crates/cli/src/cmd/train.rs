@@ -99,6 +99,7 @@ fn config(a: &Args) -> Result<Config> {
 /// Trains, saves, reports.
 pub fn run(a: Args) -> Result<()> {
     let cfg = config(&a)?;
+    crate::util::check_out_file("--out", &a.out)?;
     let setup = Setup::along(cfg.robot.name(), cfg.trajectory.clone())?
         .with_sim(cfg.sim.clone())?
         .with_learner(cfg.learner.clone())
@@ -112,7 +113,8 @@ pub fn run(a: Args) -> Result<()> {
         .train(&model, &mut |p| progress::update(&bar, minutes, p))
         .context("training")?;
     bar.finish_and_clear();
-    setup.saved(learner, &summary)?.save(&a.out)?;
+    let bytes = setup.saved(learner, &summary)?.to_bytes()?;
+    let saved = crate::util::save_result("trained model", &a.out, &bytes);
     let last = summary
         .learning_curve
         .last()
@@ -131,7 +133,18 @@ pub fn run(a: Args) -> Result<()> {
         model.name(),
         setup.sim().control_period,
     )?;
-    writeln!(text, "wrote {}", a.out.display())?;
+    let (rejected, share) = rejected(&summary);
+    if share > MAX_REJECTED_SHARE {
+        eprintln!(
+            "warning: the learner rejected {rejected} samples as absurd ({:.2} % of all, more \
+             than {} %): check the robot, the [sim] noise and the torque limits",
+            100.0 * share,
+            100.0 * MAX_REJECTED_SHARE
+        );
+    }
+    if saved.is_ok() {
+        writeln!(text, "wrote {}", a.out.display())?;
+    }
     if a.json {
         print_json(&summary_json(
             &summary,
@@ -139,7 +152,7 @@ pub fn run(a: Args) -> Result<()> {
             model.name(),
         )?);
     }
-    Ok(())
+    saved
 }
 
 fn print_summary(
@@ -191,6 +204,15 @@ fn print_summary(
     Ok(())
 }
 
+/// Above this share of rejected samples a training run warns.
+const MAX_REJECTED_SHARE: f64 = 0.01;
+
+/// Samples the learner rejected as absurd, and their share of all it saw (0 without any).
+fn rejected(s: &TrainSummary) -> (u64, f64) {
+    let (r, n) = (s.stats.rejected, s.stats.samples + s.stats.rejected);
+    (r, if n == 0 { 0.0 } else { r as f64 / n as f64 })
+}
+
 /// The JSON of a training run: the final evaluation's metrics, the run's numbers, the curve.
 fn summary_json(s: &TrainSummary, final_eval: &EvalSummary, robot: &str) -> Result<Value> {
     let mut j = serde_json::to_value(final_eval)?;
@@ -214,6 +236,8 @@ fn summary_json(s: &TrainSummary, final_eval: &EvalSummary, robot: &str) -> Resu
         "aborted_episodes": s.aborted_episodes,
         "braked_episodes": s.braked_episodes,
         "counters": s.stats,
+        "rejected_samples": rejected(s).0,
+        "rejected_share": rejected(s).1,
         "learning_curve": curve_points(&s.learning_curve),
     });
     for (k, v) in extra.as_object().into_iter().flatten() {

@@ -16,6 +16,7 @@ pub fn osrl(args: &[&str]) -> (bool, String, String) {
 }
 
 /// The JSON object on the last stdout line.
+#[allow(dead_code)] // not every test binary reads JSON
 pub fn last_json(stdout: &str) -> serde_json::Value {
     serde_json::from_str(stdout.lines().last().expect("a last line"))
         .expect("the last line is JSON")

@@ -61,7 +61,10 @@ impl Evaluator {
                 ..sim_cfg
             },
         )?;
-        let seconds = traj.period() * (periods.max(1) + 1) as f64;
+        let seconds = traj.period() * (periods.max(1) as f64 + 1.0);
+        osrl_control::run_steps(seconds, sim.control_period()).map_err(|e| {
+            osrl_control::ControlError::InvalidConfig(format!("{periods} evaluated periods: {e}"))
+        })?;
         Ok(Self {
             sim,
             osc,

@@ -1,0 +1,233 @@
+//! Reading and writing the files a user names, carefully (issue 30).
+//!
+//! - Outputs: [`check_output`] and [`check_output_dir`] refuse, before any work starts, a path
+//!   that exists and is not a regular file (a directory where a file is expected, a FIFO, a
+//!   device, a socket, a symbolic link) or whose folder cannot be written; [`write_atomic`]
+//!   writes through a temporary file and a rename, only over a regular file or a missing path;
+//!   [`write_or_fallback`] writes next to the path under a fresh name when that fails, so a long
+//!   run's result is never lost.
+//! - Inputs: [`read_limited`] reads only a regular file of at most a given size (a FIFO would
+//!   block, `/dev/zero` would never end).
+//!
+//! ```
+//! let dir = std::env::temp_dir().join(format!("osrl-files-doc-{}", std::process::id()));
+//! std::fs::create_dir_all(&dir).unwrap();
+//! let p = dir.join("a.txt");
+//! osrl_files::write_atomic(&p, b"hello")?;
+//! assert_eq!(osrl_files::read_limited(&p, 5)?, b"hello");
+//! assert!(osrl_files::read_limited(&p, 4).is_err());
+//! // A directory is not replaced.
+//! assert!(osrl_files::write_atomic(&dir, b"x").is_err());
+//! std::fs::remove_dir_all(&dir).unwrap();
+//! # Ok::<(), osrl_files::FileError>(())
+//! ```
+
+mod write;
+
+pub use write::{write_atomic, write_or_fallback, Written};
+
+use std::fs::Metadata;
+use std::io::Read;
+use std::path::{Path, PathBuf};
+
+/// What went wrong with a file; every message starts with the path.
+#[derive(Debug, thiserror::Error)]
+pub enum FileError {
+    /// The path exists and is not a regular file.
+    #[error("{path}: is a {kind}, not a regular file: {why}")]
+    NotRegular {
+        path: String,
+        kind: &'static str,
+        why: &'static str,
+    },
+    /// The folder an output file would go in does not exist.
+    #[error("{path}: the folder does not exist")]
+    MissingFolder { path: String },
+    /// A file larger than its limit.
+    #[error("{path}: {size} bytes, at most {limit} are accepted")]
+    TooLarge { path: String, size: u64, limit: u64 },
+    /// An operating-system error.
+    #[error("{path}: cannot {action}: {source}")]
+    Io {
+        path: String,
+        action: &'static str,
+        source: std::io::Error,
+    },
+}
+
+/// Shorthand for results of this crate.
+pub type Result<T> = std::result::Result<T, FileError>;
+
+pub(crate) fn io(path: &Path, action: &'static str) -> impl FnOnce(std::io::Error) -> FileError {
+    let path = path.display().to_string();
+    move |source| FileError::Io {
+        path,
+        action,
+        source,
+    }
+}
+
+/// What kind of file `meta` (from [`std::fs::symlink_metadata`]) describes, in words.
+pub fn kind(meta: &Metadata) -> &'static str {
+    let t = meta.file_type();
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if t.is_fifo() {
+            return "FIFO (named pipe)";
+        }
+        if t.is_char_device() {
+            return "character device";
+        }
+        if t.is_block_device() {
+            return "block device";
+        }
+        if t.is_socket() {
+            return "socket";
+        }
+    }
+    if t.is_dir() {
+        "directory"
+    } else if t.is_symlink() {
+        "symbolic link"
+    } else if t.is_file() {
+        "regular file"
+    } else {
+        "special file"
+    }
+}
+
+/// Checks that `path` can be written as a file: missing or a regular file (not a directory,
+/// FIFO, device, socket or symbolic link), in an existing folder this process can create a
+/// file in (probed with a temporary file, removed at once). Changes nothing.
+///
+/// # Errors
+/// [`FileError::NotRegular`] naming the kind of file, or [`FileError::Io`] for a folder that
+/// is missing or not writable.
+pub fn check_output(path: &Path) -> Result<()> {
+    if let Ok(meta) = std::fs::symlink_metadata(path) {
+        if !meta.file_type().is_file() {
+            return Err(FileError::NotRegular {
+                path: path.display().to_string(),
+                kind: kind(&meta),
+                why: "not replaced (give the name of a new or regular file)",
+            });
+        }
+    }
+    if path.as_os_str().to_string_lossy().ends_with(['/', '\\']) || path.file_name().is_none() {
+        return Err(FileError::NotRegular {
+            path: path.display().to_string(),
+            kind: "folder name",
+            why: "give a file name",
+        });
+    }
+    probe_folder(&folder_of(path))
+}
+
+/// Checks that `dir` can hold output files: missing (it is created, with its parents) or a
+/// directory this process can create files in, and that none of `files` in it exists as
+/// anything but a regular file.
+///
+/// # Errors
+/// As [`check_output`], for the folder and each file.
+pub fn check_output_dir(dir: &Path, files: &[&str]) -> Result<()> {
+    if let Ok(meta) = std::fs::metadata(dir) {
+        if !meta.is_dir() {
+            return Err(FileError::NotRegular {
+                path: dir.display().to_string(),
+                kind: kind(&std::fs::symlink_metadata(dir).unwrap_or(meta)),
+                why: "a folder is needed here",
+            });
+        }
+    }
+    std::fs::create_dir_all(dir).map_err(io(dir, "create the folder"))?;
+    probe_folder(dir)?;
+    files.iter().try_for_each(|f| check_output(&dir.join(f)))
+}
+
+/// The folder of `path` (`.` for a bare file name).
+pub(crate) fn folder_of(path: &Path) -> PathBuf {
+    match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => PathBuf::from("."),
+    }
+}
+
+/// Creates and removes a temporary file in `dir`.
+fn probe_folder(dir: &Path) -> Result<()> {
+    match std::fs::metadata(dir) {
+        Ok(m) if m.is_dir() => {}
+        Ok(m) => {
+            return Err(FileError::NotRegular {
+                path: dir.display().to_string(),
+                kind: kind(&m),
+                why: "a folder is needed here",
+            })
+        }
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            return Err(FileError::MissingFolder {
+                path: dir.display().to_string(),
+            })
+        }
+        Err(e) => return Err(io(dir, "use the folder")(e)),
+    }
+    let (tmp, file) = write::create_temp(&dir.join(".osrl-write-probe"))
+        .map_err(io(dir, "create a file in the folder"))?;
+    drop(file);
+    let _ = std::fs::remove_file(tmp);
+    Ok(())
+}
+
+/// Reads `path`, a regular file (symbolic links followed) of at most `limit` bytes.
+///
+/// # Errors
+/// [`FileError::NotRegular`] for a directory, FIFO, device or socket (checked before opening
+/// it); [`FileError::TooLarge`] beyond `limit`; [`FileError::Io`] if it cannot be read.
+pub fn read_limited(path: &Path, limit: u64) -> Result<Vec<u8>> {
+    let meta = std::fs::metadata(path).map_err(io(path, "read"))?;
+    if !meta.is_file() {
+        return Err(FileError::NotRegular {
+            path: path.display().to_string(),
+            kind: kind(&meta),
+            why: "only regular files are read",
+        });
+    }
+    let too_large = |size| FileError::TooLarge {
+        path: path.display().to_string(),
+        size,
+        limit,
+    };
+    if meta.len() > limit {
+        return Err(too_large(meta.len()));
+    }
+    let file = std::fs::File::open(path).map_err(io(path, "read"))?;
+    let mut bytes = Vec::with_capacity(meta.len() as usize);
+    // A file that grew since: read one byte beyond the limit to notice.
+    file.take(limit.saturating_add(1))
+        .read_to_end(&mut bytes)
+        .map_err(io(path, "read"))?;
+    if bytes.len() as u64 > limit {
+        return Err(too_large(bytes.len() as u64));
+    }
+    Ok(bytes)
+}
+
+/// As [`read_limited`], as UTF-8 text.
+///
+/// # Errors
+/// As [`read_limited`], or [`FileError::Io`] (kind `InvalidData`) for text that is not UTF-8.
+pub fn read_text_limited(path: &Path, limit: u64) -> Result<String> {
+    let bytes = read_limited(path, limit)?;
+    String::from_utf8(bytes).map_err(|e| {
+        let line = e.as_bytes()[..e.utf8_error().valid_up_to()]
+            .iter()
+            .filter(|&&b| b == b'\n')
+            .count()
+            + 1;
+        FileError::Io {
+            path: format!("{}:{line}", path.display()),
+            action: "read the text",
+            source: std::io::Error::new(std::io::ErrorKind::InvalidData, "not UTF-8"),
+        }
+    })
+}
