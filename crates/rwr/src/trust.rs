@@ -43,7 +43,7 @@ pub(crate) fn shrink(
     delta: f64,
 ) -> f64 {
     let rms = rms_change(gram, sw, old, new);
-    if !(rms > delta) {
+    if rms.is_nan() || rms <= delta {
         return 1.0;
     }
     let f = delta / rms;
