@@ -77,7 +77,7 @@ fn a_billion_substeps_are_refused() {
 fn eval_seconds_1e7_is_refused() {
     let d = scratch("eval");
     let model = d.join("m.osrl");
-    untrained_model().save(&model).unwrap();
+    common::untrained_model().save(&model).unwrap();
     let m = model.to_str().unwrap();
     for s in ["1e7", "1e300", "inf", "NaN"] {
         refused(
@@ -115,28 +115,6 @@ fn dynamics_with_huge_velocities_accelerations_or_torques_is_an_error_not_null()
         let args: Vec<&str> = q.iter().copied().chain([flag, v]).collect();
         refused(&args, &[names, "not finite"]);
     }
-}
-
-/// An untrained planar3 model (the library's checks pass).
-fn untrained_model() -> osrl_learn::SavedModel {
-    let model = osrl_dynamics::robots::planar3();
-    let spec = model.spec();
-    let tau: Vec<f64> = model.tau_max().collect();
-    let cfg = osrl_learn::LearnerConfig::for_robot(&spec.kp, &spec.kd, &spec.q_rest, &tau);
-    let learner = osrl_learn::Learner::new(3, 2, 0.002, cfg).unwrap();
-    let info = osrl_learn::ModelInfo {
-        robot: "planar3".into(),
-        trajectory: Default::default(),
-        home: osrl_experiments::Setup::new("planar3")
-            .unwrap()
-            .home()
-            .to_vec(),
-        gains: Default::default(),
-        control_period: 0.002,
-        sim_training_minutes: 0.0,
-        seed: 0,
-    };
-    osrl_learn::SavedModel::new(info, learner).unwrap()
 }
 
 #[test]

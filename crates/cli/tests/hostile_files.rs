@@ -103,27 +103,7 @@ fn inputs_that_are_fifos_are_refused_without_blocking() {
 
 /// A saved planar3 model's bytes with its info JSON edited by `edit` (checksum fixed).
 fn with_info(edit: impl Fn(&mut serde_json::Value)) -> Vec<u8> {
-    let model = osrl_dynamics::robots::planar3();
-    let spec = model.spec();
-    let tau: Vec<f64> = model.tau_max().collect();
-    let cfg = osrl_learn::LearnerConfig::for_robot(&spec.kp, &spec.kd, &spec.q_rest, &tau);
-    let learner = osrl_learn::Learner::new(3, 2, 0.002, cfg).unwrap();
-    let info = osrl_learn::ModelInfo {
-        robot: "planar3".into(),
-        trajectory: Default::default(),
-        home: osrl_experiments::Setup::new("planar3")
-            .unwrap()
-            .home()
-            .to_vec(),
-        gains: Default::default(),
-        control_period: 0.002,
-        sim_training_minutes: 0.0,
-        seed: 0,
-    };
-    let bytes = osrl_learn::SavedModel::new(info, learner)
-        .unwrap()
-        .to_bytes()
-        .unwrap();
+    let bytes = common::untrained_model().to_bytes().unwrap();
     let len = u64::from_le_bytes(bytes[12..20].try_into().unwrap()) as usize;
     let mut info: serde_json::Value = serde_json::from_slice(&bytes[28..28 + len]).unwrap();
     edit(&mut info);
@@ -186,6 +166,9 @@ fn a_training_run_that_rejects_its_samples_warns_and_says_so_in_json() {
     assert!(j.get("counters").is_some());
     // Without the guard: no warning, the keys still there.
     let (ok, stdout, err) = osrl(&["train", "--minutes", "0.05", "--out", o, "--json"]);
-    assert!(ok && !err.contains("warning: the learner rejected"), "{err}");
+    assert!(
+        ok && !err.contains("warning: the learner rejected"),
+        "{err}"
+    );
     assert_eq!(last_json(&stdout)["rejected_share"].as_f64(), Some(0.0));
 }

@@ -21,3 +21,26 @@ pub fn last_json(stdout: &str) -> serde_json::Value {
     serde_json::from_str(stdout.lines().last().expect("a last line"))
         .expect("the last line is JSON")
 }
+
+#[allow(dead_code)]
+/// An untrained planar3 model (the library's checks pass).
+pub fn untrained_model() -> osrl_learn::SavedModel {
+    let model = osrl_dynamics::robots::planar3();
+    let spec = model.spec();
+    let tau: Vec<f64> = model.tau_max().collect();
+    let cfg = osrl_learn::LearnerConfig::for_robot(&spec.kp, &spec.kd, &spec.q_rest, &tau);
+    let learner = osrl_learn::Learner::new(3, 2, 0.002, cfg).unwrap();
+    let info = osrl_learn::ModelInfo {
+        robot: "planar3".into(),
+        trajectory: Default::default(),
+        home: osrl_experiments::Setup::new("planar3")
+            .unwrap()
+            .home()
+            .to_vec(),
+        gains: Default::default(),
+        control_period: 0.002,
+        sim_training_minutes: 0.0,
+        seed: 0,
+    };
+    osrl_learn::SavedModel::new(info, learner).unwrap()
+}
