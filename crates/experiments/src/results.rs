@@ -143,7 +143,7 @@ pub struct RunsSummary {
 pub struct SafetyRow {
     /// On-policy episodes stopped at the reset error (the arm taken home).
     pub aborted_episodes: u64,
-    /// Episodes whose path clock braked to rest on a growing error.
+    /// Episodes ended early (braked) on a growing error or a command jump.
     pub braked_episodes: u64,
     /// On-policy commands clipped to the torque limits.
     pub clipped_on_policy: u64,

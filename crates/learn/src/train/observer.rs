@@ -34,8 +34,8 @@ pub struct Progress {
     pub n_trained: usize,
     pub episodes: u64,
     pub aborted_episodes: u64,
-    /// Episodes whose path clock braked to rest on a growing task error (see
-    /// [`CurriculumConfig::brake_error`](super::CurriculumConfig::brake_error)).
+    /// Episodes ended early (braked) on a growing task error or a command jump (see
+    /// [`CurriculumConfig::brake_error`](super::CurriculumConfig::brake_error) and `brake_step`).
     #[serde(default)]
     pub braked_episodes: u64,
     /// Last evaluation result, if any.
