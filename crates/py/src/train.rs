@@ -103,7 +103,7 @@ impl Robot for PyBot {
     fn step(&mut self, u: &[f64]) -> Result<&Measurement, DynamicsError> {
         self.steps += 1;
         let res = Python::attach(|py| -> PyResult<()> {
-            if self.steps % 250 == 0 {
+            if self.steps.is_multiple_of(250) {
                 py.check_signals()?;
             }
             let m = self
