@@ -23,6 +23,7 @@ mod errors;
 mod learner;
 mod lwpr;
 mod meas;
+mod pybot;
 mod robot;
 mod train;
 
