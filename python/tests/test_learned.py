@@ -107,6 +107,9 @@ def test_learner_steps_and_learns():
         osrl.Learner(3, 2, 0.002, robot="planar3", config={"guards": {"warmup": 5}})
     with pytest.raises(ValueError, match="xdd_ref: expected 2 values"):
         lrn.command(q, qd, np.zeros(3))
+    with pytest.raises(ValueError, match=r"qd\[0\] = NaN"):
+        lrn.command(q, np.array([np.nan, 0.0, 0.0]), np.zeros(2))
+    assert lrn.stats["commands"] == 120
     with pytest.raises(ValueError, match=r"cur.u\[0\] = inf"):
         lrn.learn(prev, Measurement(1.0, q, qd, prev.x, prev.xd, prev.xdd, np.full(3, np.inf)))
 
@@ -125,3 +128,28 @@ def test_train_on_mujoco_returns_a_controller():
         osrl.train(robot, minutes=0.01, config={"sim": {}})
     with pytest.raises(ValueError, match="osrl_name"):
         osrl.train(object(), minutes=0.01)
+
+
+def test_train_raises_the_robots_exception():
+    pytest.importorskip("mujoco")
+    from osrl.mujoco import MujocoRobot
+
+    class Failing:
+        """A MuJoCo robot whose 100th step raises."""
+
+        def __init__(self):
+            self.inner, self.steps, self.osrl_name = MujocoRobot.builtin("planar3"), 0, "planar3"
+
+        def __getattr__(self, name):
+            return getattr(self.inner, name)
+
+        def step(self, u):
+            self.steps += 1
+            if self.steps == 100:
+                raise RuntimeError("boom at step 100")
+            return self.inner.step(u)
+
+    robot = Failing()
+    with pytest.raises(RuntimeError, match="boom at step 100"):
+        osrl.train(robot, minutes=0.05)
+    assert robot.steps == 100
