@@ -2,6 +2,8 @@
 
 - ``osrl.Lwpr``: incremental Locally Weighted Projection Regression (the Rust crate ``lwpr``);
 - ``osrl.Robot``: rigid-body dynamics of a built-in robot or a URDF (the crate ``osrl-dynamics``);
+- ``osrl.LearnedController``, ``osrl.Learner``, ``osrl.train``: the learned operational space
+  controller (the crate ``osrl-learn``), stepped from Python and trained on a Python robot;
 - ``osrl.Measurement`` and ``osrl.RobotProtocol``: what a robot gives a learner (ROBOT_PROTOCOL.md);
 - ``osrl.mujoco``: a MuJoCo model as such a robot, and the MuJoCo model of a built-in robot
   (imported on use: it needs the ``mujoco`` package).
@@ -9,10 +11,21 @@
 See python/README.md.
 """
 
-from ._osrl import MAX_NORMALISED, Lwpr, NoSupportError, Robot, __version__
+from ._osrl import (
+    MAX_NORMALISED,
+    LearnedController,
+    Learner,
+    Lwpr,
+    NoSupportError,
+    Robot,
+    __version__,
+    train,
+)
 from .protocol import Measurement, RobotProtocol
 
 __all__ = [
+    "LearnedController",
+    "Learner",
     "Lwpr",
     "MAX_NORMALISED",
     "Measurement",
@@ -20,4 +33,5 @@ __all__ = [
     "Robot",
     "RobotProtocol",
     "__version__",
+    "train",
 ]

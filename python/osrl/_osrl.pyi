@@ -164,3 +164,134 @@ class Robot:
         """Forward dynamics ``M⁻¹(τ − C q̇ − g)`` (rad/s²; rigid body, no friction)."""
     def forward_dynamics(self, q: ArrayLike1, qd: ArrayLike1, u: ArrayLike1) -> Array:
         """Forward dynamics with friction, ``M⁻¹(u − h)`` (rad/s²)."""
+
+class LearnedController:
+    """A learned operational space controller (the Rust ``osrl_learn::LearnedController``, the
+    controller of ``osrl simulate --controller learned:MODEL``): the reference acceleration of
+    eq. 2 with the training's task gains, then the learned command (eq. 34) without
+    exploration, within the torque and torque-rate limits. Gives the Rust controller's commands
+    bit for bit. Stateful: the torque-rate limit and the counts follow the commands, so call
+    ``command`` once per control period."""
+
+    @staticmethod
+    def load(path: Path) -> "LearnedController":
+        """Reads a model saved by ``osrl train`` or ``save`` (``OSError`` for a missing file,
+        ``ValueError`` naming the file and field for a corrupt or inconsistent one)."""
+        ...
+    def save(self, path: Path) -> None:
+        """Writes the model (temporary file, then rename; creates its folder)."""
+        ...
+    def command(self, measurement: Any, x_d: ArrayLike1, xd_d: ArrayLike1,
+                xdd_d: ArrayLike1) -> Array:
+        """The command ``u`` (N·m, shape ``(dof,)``) for ``measurement`` (an
+        ``osrl.Measurement``, or any object with ``q``, ``qd`` of shape ``(dof,)`` and ``x``,
+        ``xd`` of shape ``(task_dim,)``) and the target position, velocity and acceleration on
+        the task axes (each ``(task_dim,)``). Bad inputs raise ``ValueError`` and change
+        nothing. Allocation-free in Rust (only the returned array is new)."""
+        ...
+    @property
+    def dof(self) -> int: ...
+    @property
+    def task_dim(self) -> int: ...
+    @property
+    def task_axes(self) -> List[int]:
+        """World axes (0 = x, 1 = y, 2 = z) of the task coordinates."""
+        ...
+    @property
+    def control_period(self) -> float:
+        """Control period (s) it was trained at."""
+        ...
+    @property
+    def robot(self) -> str:
+        """The robot it was trained on: a built-in name or a URDF path."""
+        ...
+    @property
+    def home(self) -> Array:
+        """Home posture (rad): at rest on the start of the training path."""
+        ...
+    @property
+    def gains(self) -> Tuple[float, float]:
+        """Task gains ``(kp, kd)`` of eq. 2."""
+        ...
+    @property
+    def sim_training_minutes(self) -> float: ...
+    @property
+    def n_local_models(self) -> int: ...
+    @property
+    def counts(self) -> Tuple[int, int, int]:
+        """Commands so far by source: ``(learned, extrapolated, fallback)``."""
+        ...
+    @property
+    def stats(self) -> Dict[str, Any]:
+        """The learner's counters."""
+        ...
+    @property
+    def training(self) -> Optional[Dict[str, Any]]:
+        """The training summary (learning curve, episodes, ...) of ``osrl.train``; ``None``
+        for a loaded model."""
+        ...
+
+class Learner:
+    """The learner of the learned controller (``osrl_learn::Learner``) as a stepping object:
+    ``command`` for a reference acceleration, ``learn`` from each transition. ``robot`` (a
+    built-in name or URDF path) fills the config's data-sheet fields (nominal gains, rest
+    posture, torque limits); ``config`` is a dict of ``[learner]`` keys (``osrl train``'s TOML
+    section, nested dicts for its groups, e.g. ``{"guards": {"warmup_samples": 200}}``;
+    unknown keys raise ``ValueError``); ``seed`` seeds the exploration noise."""
+
+    def __init__(self, dof: int, task_dim: int, control_period: float,
+                 robot: Optional[str] = None, config: Optional[Dict[str, Any]] = None,
+                 seed: int = 0) -> None: ...
+    def command(self, q: ArrayLike1, qd: ArrayLike1, xdd_ref: ArrayLike1,
+                explore: bool = False, seed: Optional[int] = None) -> Array:
+        """The command ``u`` (N·m) for the reference task acceleration ``xdd_ref`` at
+        ``(q, qd)``: the nominal command until ``ready``, the learned blend after; with
+        ``explore``, exploration noise (``seed`` reseeds it first)."""
+        ...
+    def learn(self, prev: Any, cur: Any) -> None:
+        """Learns from the transition ``prev → cur`` (``osrl.Measurement``s; ``cur.u`` was
+        the command held in between). A rejected measurement raises ``ValueError`` (the
+        rejection is counted in ``stats``)."""
+        ...
+    def start_episode(self, last_sent: Optional[ArrayLike1] = None) -> None:
+        """Starts a new sequence of commands: ``last_sent`` is the command the robot holds
+        (``None``: unknown, the next command is not rate limited); the noise restarts at 0."""
+        ...
+    @property
+    def ready(self) -> bool:
+        """Whether the warm-up is over and the local models exist."""
+        ...
+    @property
+    def n_local_models(self) -> int: ...
+    @property
+    def n_trained(self) -> int: ...
+    @property
+    def dof(self) -> int: ...
+    @property
+    def task_dim(self) -> int: ...
+    @property
+    def control_period(self) -> float: ...
+    @property
+    def stats(self) -> Dict[str, Any]: ...
+    @property
+    def config(self) -> Dict[str, Any]: ...
+
+def train(robot: Any, trajectory: str = "figure8", minutes: float = 30.0, seed: int = 0,
+          config: Optional[Dict[str, Any]] = None,
+          model: Optional[str] = None) -> LearnedController:
+    """Trains a learned controller on ``robot`` (any object of ROBOT_PROTOCOL.md, e.g.
+    ``osrl.mujoco.MujocoRobot``) with the Rust trainer of ``osrl train``: motor babbling, then
+    on-policy learning along ``trajectory`` (``figure8``, ``circle``, ``min_jerk``) for
+    ``minutes`` simulated minutes in all, seeded with ``seed``. The robot is first reset at
+    rest at the home posture.
+
+    ``model``: osrl's model of the robot (a built-in name or URDF path; default
+    ``robot.osrl_name``, which ``MujocoRobot.builtin`` sets). It gives the trajectory, the home
+    posture, the learner's data-sheet values and the saved model's robot, and the evaluations
+    run on osrl's own simulator of it (the learner never sees it: training uses ``robot``'s
+    measurements only). ``config``: ``{"learner": {...}, "train": {...}, "trajectory":
+    {...}}`` with ``osrl train``'s TOML keys (unknown keys raise ``ValueError``).
+
+    The GIL is released while training, taken for each ``robot.step``; Ctrl-C stops it. An
+    exception raised by the robot stops the training and is raised again."""
+    ...

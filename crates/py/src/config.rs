@@ -9,6 +9,7 @@
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
+use serde::de::DeserializeOwned;
 use serde_json::{Map, Number, Value};
 
 /// The config keys, in the crate's order.
@@ -19,8 +20,8 @@ pub fn keys() -> Vec<String> {
     }
 }
 
-/// A Python value as JSON; `key` names it in errors.
-fn to_json(key: &str, v: &Bound<'_, PyAny>) -> PyResult<Value> {
+/// A Python value as JSON (dicts with string keys nest); `key` names it in errors.
+pub fn to_json(key: &str, v: &Bound<'_, PyAny>) -> PyResult<Value> {
     if v.is_none() {
         return Ok(Value::Null);
     }
@@ -41,6 +42,17 @@ fn to_json(key: &str, v: &Bound<'_, PyAny>) -> PyResult<Value> {
     }
     if v.is_instance_of::<PyString>() {
         return Ok(Value::String(v.extract()?));
+    }
+    if let Ok(d) = v.cast::<PyDict>() {
+        let mut map = Map::new();
+        for (k, item) in d.iter() {
+            let name: String = k
+                .extract()
+                .map_err(|_| PyTypeError::new_err(format!("{key}: keys must be strings")))?;
+            let value = to_json(&format!("{key}.{name}"), &item)?;
+            map.insert(name, value);
+        }
+        return Ok(Value::Object(map));
     }
     if v.is_instance_of::<PyList>() || v.is_instance_of::<PyTuple>() {
         let items: PyResult<Vec<Value>> = v.try_iter()?.map(|i| to_json(key, &i?)).collect();
@@ -95,4 +107,24 @@ fn has_std(cfg: &lwpr::LwprConfig) -> bool {
 pub fn to_dict<'py>(py: Python<'py>, cfg: &lwpr::LwprConfig) -> PyResult<Bound<'py, PyAny>> {
     let text = serde_json::to_string(cfg).expect("LwprConfig serialises");
     py.import("json")?.call_method1("loads", (text,))
+}
+
+/// A serde config (`deny_unknown_fields`, defaults for missing keys) from a Python dict (or
+/// `None`: the defaults); `what` names it in errors. Unknown keys and bad values are a
+/// `ValueError` phrased by serde (`unknown field `x`, expected one of ...`).
+pub fn from_dict<T: DeserializeOwned + Default>(
+    what: &str,
+    obj: Option<&Bound<'_, PyAny>>,
+) -> PyResult<T> {
+    let Some(obj) = obj.filter(|o| !o.is_none()) else {
+        return Ok(T::default());
+    };
+    if obj.cast::<PyDict>().is_err() {
+        return Err(PyTypeError::new_err(format!(
+            "{what}: expected a dict, got {}",
+            obj.get_type().name()?
+        )));
+    }
+    let value = to_json(what, obj)?;
+    serde_json::from_value(value).map_err(|e| PyValueError::new_err(format!("invalid {what}: {e}")))
 }

@@ -59,3 +59,18 @@ pub fn io_err(e: std::io::Error, path: Option<&Path>) -> PyErr {
     };
     PyErr::from(std::io::Error::new(e.kind(), msg))
 }
+
+/// An `osrl-learn` error as a Python exception: files as `OSError`, a robot's or a
+/// controller's failure on the input as `ValueError`, everything else (bad configs, bad
+/// measurements, dimensions, unreadable models) as `ValueError` too, naming what was wrong.
+pub fn learn_err(e: osrl_learn::LearnError) -> PyErr {
+    match e {
+        osrl_learn::LearnError::File(f) => file_err(f),
+        other => PyValueError::new_err(other.to_string()),
+    }
+}
+
+/// An `osrl-experiments` error (a training set-up) as a Python exception.
+pub fn setup_err(e: osrl_experiments::ExperimentError) -> PyErr {
+    PyValueError::new_err(e.to_string())
+}

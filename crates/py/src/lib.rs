@@ -2,7 +2,10 @@
 //! (`python/`, built by maturin as an abi3 wheel; `python/README.md` is the user's guide).
 //!
 //! - [`lwpr::PyLwpr`] (`osrl.Lwpr`): the `lwpr` crate's model on numpy arrays;
-//! - [`robot::PyRobot`] (`osrl.Robot`): the `osrl-dynamics` model of a built-in robot or a URDF.
+//! - [`robot::PyRobot`] (`osrl.Robot`): the `osrl-dynamics` model of a built-in robot or a URDF;
+//! - [`controller::PyLearnedController`] (`osrl.LearnedController`), [`learner::PyLearner`]
+//!   (`osrl.Learner`) and [`train::train`] (`osrl.train`): the learned controller of
+//!   `osrl-learn`, stepped from Python and trained on a Python robot by the Rust trainer.
 //!
 //! Conventions shared by every method: inputs are float64 numpy arrays (or lists of numbers);
 //! a wrong shape, a wrong dtype or a non-finite value raises `ValueError` before anything
@@ -15,9 +18,14 @@
 
 mod arrays;
 mod config;
+mod controller;
 mod errors;
+mod learner;
 mod lwpr;
+mod meas;
+mod pybot;
 mod robot;
+mod train;
 
 use pyo3::prelude::*;
 
@@ -26,6 +34,9 @@ use pyo3::prelude::*;
 fn _osrl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<lwpr::PyLwpr>()?;
     m.add_class::<robot::PyRobot>()?;
+    m.add_class::<controller::PyLearnedController>()?;
+    m.add_class::<learner::PyLearner>()?;
+    m.add_function(wrap_pyfunction!(train::train, m)?)?;
     m.add(
         "NoSupportError",
         m.py().get_type::<errors::NoSupportError>(),

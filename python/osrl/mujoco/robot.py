@@ -127,14 +127,17 @@ class MujocoRobot:
                 joint_limits: bool = True) -> "MujocoRobot":
         """A built-in osrl robot simulated by MuJoCo: the model of ``builtin_mjcf(name)``
         (RK4 steps of ``timestep``), the task point ``ee_link``, osrl's task axes and start
-        posture. osrl's own simulator defaults to the same period and step."""
+        posture. osrl's own simulator defaults to the same period and step. Its ``osrl_name``
+        is ``name`` (``osrl.train`` evaluates on osrl's model of that name)."""
         from .. import Robot
         from .mjcf import builtin_mjcf
 
         r = Robot.builtin(name)
         xml = builtin_mjcf(name, timestep=timestep, joint_limits=joint_limits)
-        return cls(load_model(xml), site="ee_link", task_axes=r.task_axes,
-                   control_period=control_period, q_start=r.q_start)
+        robot = cls(load_model(xml), site="ee_link", task_axes=r.task_axes,
+                    control_period=control_period, q_start=r.q_start)
+        robot.osrl_name = name
+        return robot
 
     @property
     def dof(self) -> int:

@@ -1,0 +1,103 @@
+//! Python measurements and targets into preallocated Rust buffers, checked before anything
+//! changes: an `osrl.Measurement` (or any object with its attributes `t`, `q`, `qd`, `x`, `xd`,
+//! `xdd`, `u`) into an `osrl_dynamics::Measurement` of known size.
+
+use crate::arrays::read_into;
+use nalgebra::DVector;
+use osrl_dynamics::Measurement;
+use pyo3::exceptions::PyValueError;
+use pyo3::intern;
+use pyo3::prelude::*;
+
+/// `obj` (a 1-D float64 array or a list of numbers) as exactly `len` finite values in `buf`.
+pub fn read_checked(
+    what: &str,
+    obj: &Bound<'_, PyAny>,
+    len: usize,
+    buf: &mut Vec<f64>,
+) -> PyResult<()> {
+    read_into(what, obj, buf)?;
+    if buf.len() != len {
+        return Err(PyValueError::new_err(format!(
+            "{what}: expected {len} values, got {}",
+            buf.len()
+        )));
+    }
+    if let Some(i) = buf.iter().position(|v| !v.is_finite()) {
+        return Err(PyValueError::new_err(format!(
+            "{what}[{i}] = {} is not finite",
+            buf[i]
+        )));
+    }
+    Ok(())
+}
+
+/// A zero measurement of a robot with `n` joints and an `m`-D task.
+pub fn zeros(n: usize, m: usize) -> Measurement {
+    Measurement {
+        t: 0.0,
+        q: DVector::zeros(n),
+        qd: DVector::zeros(n),
+        x: DVector::zeros(m),
+        xd: DVector::zeros(m),
+        xdd: DVector::zeros(m),
+        u: DVector::zeros(n),
+    }
+}
+
+/// Reads attribute `name` of `obj` (`what.name` in errors) into `dst`, through `buf`.
+fn field(
+    obj: &Bound<'_, PyAny>,
+    what: &str,
+    name: &Bound<'_, pyo3::types::PyString>,
+    dst: &mut DVector<f64>,
+    buf: &mut Vec<f64>,
+) -> PyResult<()> {
+    let v = obj.getattr(name).map_err(|_| {
+        PyValueError::new_err(format!(
+            "{what}: expected an osrl.Measurement, it has no `{name}`"
+        ))
+    })?;
+    read_checked(&format!("{what}.{name}"), &v, dst.len(), buf)?;
+    dst.copy_from_slice(buf);
+    Ok(())
+}
+
+/// The joint and task state `q, q̇, x, ẋ` of `obj` into `dst` (the fields a controller reads).
+/// On an error `dst` may be partly written: callers pass a scratch measurement.
+pub fn read_state(
+    obj: &Bound<'_, PyAny>,
+    what: &str,
+    dst: &mut Measurement,
+    buf: &mut Vec<f64>,
+) -> PyResult<()> {
+    let py = obj.py();
+    field(obj, what, intern!(py, "q"), &mut dst.q, buf)?;
+    field(obj, what, intern!(py, "qd"), &mut dst.qd, buf)?;
+    field(obj, what, intern!(py, "x"), &mut dst.x, buf)?;
+    field(obj, what, intern!(py, "xd"), &mut dst.xd, buf)
+}
+
+/// Every field of `obj` into `dst` (sizes from `dst`); see [`read_state`].
+pub fn read_all(
+    obj: &Bound<'_, PyAny>,
+    what: &str,
+    dst: &mut Measurement,
+    buf: &mut Vec<f64>,
+) -> PyResult<()> {
+    let py = obj.py();
+    read_state(obj, what, dst, buf)?;
+    field(obj, what, intern!(py, "xdd"), &mut dst.xdd, buf)?;
+    field(obj, what, intern!(py, "u"), &mut dst.u, buf)?;
+    let t: f64 = obj
+        .getattr(intern!(py, "t"))
+        .and_then(|t| t.extract())
+        .map_err(|_| PyValueError::new_err(format!("{what}.t: expected a number")))?;
+    if !t.is_finite() {
+        return Err(PyValueError::new_err(format!(
+            "{what}.t = {t} is not finite"
+        )));
+    }
+    dst.t = t;
+    Ok(())
+}
