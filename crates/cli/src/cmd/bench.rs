@@ -15,6 +15,15 @@
 //! its own minimum): the repetitions compute the same numbers, so on a shared machine this is
 //! the speed without the other jobs' interruptions.
 
+mod c_ref;
+mod datasets;
+mod markdown;
+mod pinocchio;
+mod references;
+mod samples;
+#[cfg(test)]
+mod tests;
+
 use crate::util;
 use anyhow::{Context, Result};
 use lwpr::datasets::{cross21_config, cross_config, cross_nd_run, cross_run, Embedding, RunResult};
@@ -38,6 +47,8 @@ pub struct Args {
 enum Sub {
     /// LWPR: the 2-D and 21-D cross tests and robot inverse dynamics.
     Lwpr(LwprArgs),
+    /// The crate against the reference LWPR C library and Pinocchio's C++ library (issue 31).
+    References(references::RefArgs),
 }
 
 #[derive(clap::ValueEnum, Clone, Copy, PartialEq)]
@@ -116,6 +127,7 @@ struct LwprArgs {
 pub fn run(a: Args) -> Result<()> {
     match a.cmd {
         Sub::Lwpr(b) => lwpr(b),
+        Sub::References(b) => references::run(b),
     }
 }
 
