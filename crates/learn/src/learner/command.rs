@@ -309,7 +309,10 @@ mod tests {
 
     /// `max_j |a_j − b_j|`.
     fn largest_difference(a: &[f64], b: &[f64]) -> f64 {
-        a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max)
+        a.iter()
+            .zip(b)
+            .map(|(x, y)| (x - y).abs())
+            .fold(0.0, f64::max)
     }
 
     /// One field trained by hand (a known `β`, confident) in a fixture learner with
