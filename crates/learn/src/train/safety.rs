@@ -101,9 +101,9 @@ mod tests {
         // 15 s bins at dt = 5 s: three steps per bin, 12 steps per minute.
         let mut m = StepMonitor::new(2, 5.0);
         let mut steps = 0;
-        for k in 0..3 {
+        // Babbling: nothing sent on-policy, no bin drawn.
+        for _ in 0..3 {
             steps += 1;
-            let _ = k; // babbling: nothing sent on-policy
             m.tick(steps, 12);
         }
         for u in [[0.0, 1.0], [0.5, 1.0], [0.5, 0.2]] {
