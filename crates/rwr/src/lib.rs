@@ -57,6 +57,7 @@ mod config;
 mod error;
 mod online;
 mod policy;
+mod simd;
 mod stats;
 pub mod toy;
 mod trust;

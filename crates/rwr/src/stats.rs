@@ -42,7 +42,26 @@ impl Stats {
     }
 
     /// Adds one sample `(φ, u, r)` with weight `w`. Lengths are the caller's responsibility.
+    /// Runs the AVX2 copy where the CPU has it (the same operations: the same bits).
     pub fn add(&mut self, w: f64, phi: &[f64], u: &[f64], r: f64) {
+        #[cfg(target_arch = "x86_64")]
+        if crate::simd::avx2() {
+            // SAFETY: the CPU supports AVX2 (checked just above).
+            unsafe { self.add_avx2(w, phi, u, r) };
+            return;
+        }
+        self.add_body(w, phi, u, r);
+    }
+
+    /// [`Stats::add`] compiled for AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn add_avx2(&mut self, w: f64, phi: &[f64], u: &[f64], r: f64) {
+        self.add_body(w, phi, u, r);
+    }
+
+    #[inline(always)]
+    pub(crate) fn add_body(&mut self, w: f64, phi: &[f64], u: &[f64], r: f64) {
         let p = phi.len();
         // Column j of the lower triangle of G gains w φ_j φ[j..] (contiguous, column-major).
         let gram = self.gram.as_mut_slice();
@@ -112,6 +131,28 @@ impl Solver {
         ridge: f64,
         prior: Option<&DMatrix<f64>>,
     ) -> Result<f64> {
+        #[cfg(target_arch = "x86_64")]
+        if crate::simd::avx2() {
+            // SAFETY: the CPU supports AVX2 (checked just above).
+            return unsafe { self.solve_avx2(s, ridge, prior) };
+        }
+        self.solve_body(s, ridge, prior)
+    }
+
+    /// [`Solver::solve_with_prior`] compiled for AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn solve_avx2(&mut self, s: &Stats, ridge: f64, prior: Option<&DMatrix<f64>>) -> Result<f64> {
+        self.solve_body(s, ridge, prior)
+    }
+
+    #[inline(always)]
+    pub(crate) fn solve_body(
+        &mut self,
+        s: &Stats,
+        ridge: f64,
+        prior: Option<&DMatrix<f64>>,
+    ) -> Result<f64> {
         if s.sw.is_nan() || s.sw <= 0.0 {
             return Err(RwrError::NoWeight);
         }
@@ -148,6 +189,7 @@ impl Solver {
 }
 
 /// `aᵀb` with four partial sums (vectorisable).
+#[inline(always)]
 fn dot(a: &[f64], b: &[f64]) -> f64 {
     let mut acc = [0.0; 4];
     let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
@@ -168,6 +210,7 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 /// Solves `A X = B` for symmetric positive definite `A` given by its lower triangle: overwrites
 /// the lower triangle of `A` with its Cholesky factor `L` and `B` with `X`. Fails with
 /// [`RwrError::Singular`] (B then holds garbage) when `A` is not numerically positive definite.
+#[inline(always)]
 fn cholesky_solve_lower(a: &mut DMatrix<f64>, b: &mut DMatrix<f64>) -> Result<()> {
     let p = a.nrows();
     // Right-looking factorisation on contiguous columns (the same operations, in the same
