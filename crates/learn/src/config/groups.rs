@@ -133,6 +133,10 @@ pub enum NoiseProcess {
     /// Ornstein–Uhlenbeck: `z ← a z + sqrt(1 − a²) e`, `a = exp(−dt/T)`, unit variance.
     #[default]
     OrnsteinUhlenbeck,
+    /// The same process with uniform innovations `e ∈ [−√3, √3]` (unit variance): the same
+    /// covariance, and a per-period change bounded by construction (at most `2√3 sqrt(1 − a²)`,
+    /// in practice `√3 sqrt(1 − a²)` plus a small drift term).
+    OrnsteinUhlenbeckBounded,
     /// Standard normal knots (clipped at 3) `T` apart, joined by half-cosines: the per-period
     /// change is at most `3π dt / T` by construction.
     Smooth,

@@ -10,7 +10,7 @@ use super::null_space::project_null;
 use super::stats::Scratch;
 use super::{Features, Models};
 use crate::config::{LearnerConfig, NoiseProcess};
-use rand::Rng;
+use rand::{Rng, RngExt};
 use rand_distr::{Distribution, StandardNormal};
 
 /// Largest magnitude of a knot (standard deviations): draws are clipped here, so the noise never
@@ -32,6 +32,8 @@ pub(crate) struct Knots {
     ds: f64,
     /// `Some(a)`: an Ornstein–Uhlenbeck process with this per-period correlation.
     ou: Option<f64>,
+    /// Uniform innovations on `[−√3, √3]` instead of standard normal ones.
+    bounded: bool,
 }
 
 impl Knots {
@@ -43,6 +45,7 @@ impl Knots {
             s: 1.0,
             ds,
             ou: None,
+            bounded: false,
         }
     }
 
@@ -62,8 +65,13 @@ impl Knots {
         };
         if let Some(a) = self.ou {
             let b = (1.0 - a * a).sqrt();
+            let r3 = 3f64.sqrt();
             for z in self.z.iter_mut() {
-                let e: f64 = StandardNormal.sample(rng);
+                let e: f64 = if self.bounded {
+                    rng.random_range(-r3..=r3)
+                } else {
+                    StandardNormal.sample(rng)
+                };
                 *z = a * *z + b * e;
             }
             return;
@@ -103,8 +111,12 @@ impl Noise {
     pub fn new(n: usize, kind: NoiseProcess, tau: f64, dt: f64) -> Self {
         let ds = if tau > 0.0 { dt / tau } else { f64::INFINITY };
         let mut iso = Knots::new(n, ds);
-        if kind == NoiseProcess::OrnsteinUhlenbeck {
+        if matches!(
+            kind,
+            NoiseProcess::OrnsteinUhlenbeck | NoiseProcess::OrnsteinUhlenbeckBounded
+        ) {
             iso.ou = Some(if tau > 0.0 { (-dt / tau).exp() } else { 0.0 });
+            iso.bounded = kind == NoiseProcess::OrnsteinUhlenbeckBounded;
         }
         Self {
             null: iso.clone(),
@@ -230,6 +242,46 @@ mod tests {
             (rms_step - want).abs() < 0.02 * want,
             "{rms_step} vs {want}"
         );
+    }
+
+    /// The bounded variant has the Ornstein–Uhlenbeck process's variance and RMS change, and
+    /// its largest per-period change stays below the bound `2√3 sqrt(1 − a²)` — about a third of
+    /// the Gaussian process's largest change over the same number of periods.
+    #[test]
+    fn bounded_ornstein_uhlenbeck_noise_has_the_same_moments_and_bounded_steps() {
+        let (dt, tau): (f64, f64) = (0.002, 0.1);
+        let a = (-dt / tau).exp();
+        let bound = 2.0 * 3f64.sqrt() * (1.0 - a * a).sqrt();
+        let mut largest = [0.0f64; 2];
+        for (i, kind) in [
+            crate::config::NoiseProcess::OrnsteinUhlenbeckBounded,
+            crate::config::NoiseProcess::OrnsteinUhlenbeck,
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(4);
+            let mut n = super::Noise::new(1, kind, tau, dt);
+            let (mut s2, mut d2, mut prev) = (0.0, 0.0, 0.0);
+            let k = 200_000;
+            for _ in 0..k {
+                n.iso.advance(&mut rng);
+                let z = n.iso.z[0];
+                s2 += z * z;
+                d2 += (z - prev) * (z - prev);
+                largest[i] = largest[i].max((z - prev).abs());
+                prev = z;
+            }
+            let var = s2 / k as f64;
+            assert!((var - 1.0).abs() < 0.05, "{kind:?}: variance {var}");
+            let (rms, want) = ((d2 / k as f64).sqrt(), (2.0 * (1.0 - a)).sqrt());
+            assert!(
+                (rms - want).abs() < 0.02 * want,
+                "{kind:?}: {rms} vs {want}"
+            );
+        }
+        assert!(largest[0] <= bound, "{} > {bound}", largest[0]);
+        assert!(largest[0] < 0.45 * largest[1], "{largest:?}");
     }
 
     /// `T = 0` is white noise: independent clipped draws every period.
