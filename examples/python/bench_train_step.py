@@ -1,0 +1,70 @@
+"""Per-step cost of training through ``osrl.train`` on a Python robot (MuJoCo), against the
+same training on osrl's own simulator. A benchmark, not a test.
+
+    cargo build --release -p osrl-cli
+    python examples/python/bench_train_step.py [--robot planar3] [--minutes 2] [--rounds 3]
+
+Per control step, in interleaved rounds (the best round of each):
+Both training figures are the trainers' own ``wall_seconds`` (set-up excluded).
+- ``mujoco``: ``osrl.train(MujocoRobot.builtin(robot), minutes=M)``: the Rust trainer, the
+  Rust → Python call of ``robot.step`` and reading its ``Measurement``, MuJoCo's steps and
+  measurement;
+- ``rust``: ``osrl train --robot R --minutes M`` (target/release/osrl): the same trainer and
+  learner on osrl's simulator;
+- ``mj_step``: ``MujocoRobot.step`` alone, called from a Python loop with the command sequence
+  of a PD hold computed in the loop (MuJoCo's share and Python's cost of the adapter; the PD
+  command with ``Robot.gravity`` adds about 2 µs).
+``mujoco − rust − mj_step`` is then the binding's share (plus osrl's own simulator step, a few
+µs, which ``rust`` contains and ``mujoco`` does not).
+"""
+
+import argparse
+import json
+import subprocess
+import time
+from pathlib import Path
+
+import numpy as np
+
+import osrl
+from osrl.mujoco import MujocoRobot
+
+REPO = Path(__file__).resolve().parents[2]
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--robot", default="planar3")
+    ap.add_argument("--minutes", type=float, default=2.0)
+    ap.add_argument("--rounds", type=int, default=3)
+    a = ap.parse_args()
+    cli = REPO / "target" / "release" / "osrl"
+    if not cli.is_file():
+        raise SystemExit(f"{cli} not found: cargo build --release -p osrl-cli")
+    sim = MujocoRobot.builtin(a.robot)
+    steps = int(round(a.minutes * 60 / sim.control_period))
+    r = osrl.Robot.builtin(a.robot)
+    best = {"mujoco": np.inf, "rust": np.inf, "mj_step": np.inf}
+    for _ in range(a.rounds):
+        s = osrl.train(sim, "figure8", minutes=a.minutes, seed=0).training
+        best["mujoco"] = min(best["mujoco"], s["wall_seconds"] / steps)
+        out = subprocess.run([str(cli), "train", "--robot", a.robot, "--minutes", str(a.minutes),
+                              "--out", "/tmp/bench_train_step.model", "--json"],
+                             check=True, capture_output=True, text=True).stdout
+        s = json.loads(out.strip().splitlines()[-1])
+        best["rust"] = min(best["rust"], s["wall_seconds"] / steps)
+        meas = sim.reset()
+        q0 = meas.q.copy()
+        t0 = time.perf_counter()
+        for _ in range(steps):
+            meas = sim.step(r.gravity(meas.q) + 50.0 * (q0 - meas.q) - 5.0 * meas.qd)
+        best["mj_step"] = min(best["mj_step"], (time.perf_counter() - t0) / steps)
+    us = {k: 1e6 * v for k, v in best.items()}
+    print(f"{a.robot}, {a.minutes} simulated minutes ({steps} control steps), best of {a.rounds} rounds:")
+    for k, v in us.items():
+        print(f"  {k:8s} {v:7.1f} µs per control step")
+    print(f"  binding share (mujoco − rust − mj_step): {us['mujoco'] - us['rust'] - us['mj_step']:.1f} µs")
+
+
+if __name__ == "__main__":
+    main()
