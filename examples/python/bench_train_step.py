@@ -13,7 +13,10 @@ Both training figures are the trainers' own ``wall_seconds`` (set-up excluded).
   learner on osrl's simulator;
 - ``mj_step``: ``MujocoRobot.step`` alone, called from a Python loop with the command sequence
   of a PD hold computed in the loop (MuJoCo's share and Python's cost of the adapter; the PD
-  command with ``Robot.gravity`` adds about 2 µs).
+  command with ``Robot.gravity`` adds about 2 µs);
+- ``mj_raw``: MuJoCo's own work in ``step`` (``mj_step`` per substep and the ``mj_forward`` of
+  the measurement), called bare from Python with a constant control: ``mj_step − mj_raw`` is
+  the adapter's Python (argument checks, the saved state, the Jacobians, the ``Measurement``).
 ``mujoco − rust − mj_step`` is then the binding's share (plus osrl's own simulator step, a few
 µs, which ``rust`` contains and ``mujoco`` does not).
 """
@@ -24,6 +27,7 @@ import subprocess
 import time
 from pathlib import Path
 
+import mujoco
 import numpy as np
 
 import osrl
@@ -44,7 +48,7 @@ def main() -> None:
     sim = MujocoRobot.builtin(a.robot)
     steps = int(round(a.minutes * 60 / sim.control_period))
     r = osrl.Robot.builtin(a.robot)
-    best = {"mujoco": np.inf, "rust": np.inf, "mj_step": np.inf}
+    best = {"mujoco": np.inf, "rust": np.inf, "mj_step": np.inf, "mj_raw": np.inf}
     for _ in range(a.rounds):
         s = osrl.train(sim, "figure8", minutes=a.minutes, seed=0).training
         best["mujoco"] = min(best["mujoco"], s["wall_seconds"] / steps)
@@ -59,10 +63,20 @@ def main() -> None:
         for _ in range(steps):
             meas = sim.step(r.gravity(meas.q) + 50.0 * (q0 - meas.q) - 5.0 * meas.qd)
         best["mj_step"] = min(best["mj_step"], (time.perf_counter() - t0) / steps)
+        m, d = sim.model, sim.data
+        sim.reset()
+        d.ctrl[:] = r.gravity(sim.measurement().q)
+        t0 = time.perf_counter()
+        for _ in range(steps):
+            for _ in range(sim.substeps):
+                mujoco.mj_step(m, d)
+            mujoco.mj_forward(m, d)
+        best["mj_raw"] = min(best["mj_raw"], (time.perf_counter() - t0) / steps)
     us = {k: 1e6 * v for k, v in best.items()}
     print(f"{a.robot}, {a.minutes} simulated minutes ({steps} control steps), best of {a.rounds} rounds:")
     for k, v in us.items():
         print(f"  {k:8s} {v:7.1f} µs per control step")
+    print(f"  adapter's Python (mj_step − mj_raw): {us['mj_step'] - us['mj_raw']:.1f} µs")
     print(f"  binding share (mujoco − rust − mj_step): {us['mujoco'] - us['rust'] - us['mj_step']:.1f} µs")
 
 

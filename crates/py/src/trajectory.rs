@@ -61,7 +61,8 @@ impl PyTrajectory {
             return Err(PyValueError::new_err(format!("t = {t}: must be finite")));
         }
         let s = self.traj.sample(t);
-        let pick = |v: &nalgebra::Vector3<f64>| -> Vec<f64> { self.axes.iter().map(|&a| v[a]).collect() };
+        let pick =
+            |v: &nalgebra::Vector3<f64>| -> Vec<f64> { self.axes.iter().map(|&a| v[a]).collect() };
         Ok((
             out1(py, &pick(&s.x)),
             out1(py, &pick(&s.xd)),
