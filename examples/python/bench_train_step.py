@@ -82,11 +82,13 @@ def main() -> None:
             mujoco.mj_forward(m, d)
         best["mj_raw"] = min(best["mj_raw"], (time.process_time() - t0) / steps)
     us = {k: 1e6 * v for k, v in best.items()}
-    print(f"{a.robot}, {a.minutes} simulated minutes ({steps} control steps), best of {a.rounds} rounds:")
+    print(f"{a.robot}, {a.minutes} simulated minutes ({steps} control steps), "
+          f"best of {a.rounds} rounds:")
     for k, v in us.items():
         print(f"  {k:8s} {v:7.1f} µs CPU per control step")
     print(f"  adapter's Python (mj_step − mj_raw): {us['mj_step'] - us['mj_raw']:.1f} µs")
-    print(f"  binding share (mujoco − rust − mj_step): {us['mujoco'] - us['rust'] - us['mj_step']:.1f} µs")
+    binding = us["mujoco"] - us["rust"] - us["mj_step"]
+    print(f"  binding share (mujoco − rust − mj_step): {binding:.1f} µs")
 
 
 if __name__ == "__main__":

@@ -70,7 +70,8 @@ def evaluate(ctrl: osrl.LearnedController, traj: osrl.Trajectory, periods: int) 
     window = err[per:]
     n = len(t)
     return {
-        "robot": ctrl.robot, "periods": periods, "steps": n, "control_period_s": ctrl.control_period,
+        "robot": ctrl.robot, "periods": periods, "steps": n,
+        "control_period_s": ctrl.control_period,
         "tracking_rms_mm": 1e3 * float(np.sqrt(np.mean(window ** 2))),
         "tracking_max_mm": 1e3 * float(window.max()),
         "largest_command_step_nm": float(np.abs(np.diff(u, axis=0)).max()),
@@ -103,7 +104,8 @@ def plot(path: Path, ev: dict, training: dict | None) -> None:
     if training:
         curve = training["learning_curve"]
         m = [c[0] for c in curve]
-        ax[2].semilogy(m, [c[1]["tracking_rms_mm"] for c in curve], "o-", ms=3, label="tracking RMS (mm)")
+        ax[2].semilogy(m, [c[1]["tracking_rms_mm"] for c in curve], "o-", ms=3,
+                       label="tracking RMS (mm)")
         ax[2].semilogy(m, [c[1]["command_nmse"] for c in curve], "s-", ms=3, label="command nMSE")
         ax[2].set(xlabel="simulated training minutes (MuJoCo)",
                   title="evaluations on osrl's model")
@@ -127,15 +129,15 @@ def main() -> None:
         ctrl.save(a.out / "model.osrl")
         training = ctrl.training
         (a.out / "training.json").write_text(json.dumps(training))
-        last = training["learning_curve"][-1][1]
-        print(f"trained: {training['sim_training_minutes']:.1f} simulated minutes in "
-              f"{training['wall_seconds']:.0f} s wall, {training['n_local_models']} local models")
-        print(f"  evaluation on osrl's {a.robot} (last): tracking RMS {last['tracking_rms_mm']:.3f} mm"
-              f" (max {last['tracking_max_mm']:.3f}), command nMSE vs eq. 7 {last['command_nmse']:.4f}")
-        print(f"  safety in MuJoCo: {training['episodes']} episodes, {training['aborted_episodes']} "
-              f"aborted, {training['braked_episodes']} braked, {training['clipped_on_policy']} "
-              f"commands clipped; largest on-policy command step {training['max_command_step']:.3f} "
-              f"N·m (eq. 7 on the path: {last['max_command_step_analytical']:.3f} N·m)")
+        t, e = training, training["learning_curve"][-1][1]
+        print(f"trained: {t['sim_training_minutes']:.1f} simulated minutes in "
+              f"{t['wall_seconds']:.0f} s wall, {t['n_local_models']} local models")
+        print(f"  evaluation on osrl's {a.robot} (last): tracking RMS {e['tracking_rms_mm']:.3f} "
+              f"mm (max {e['tracking_max_mm']:.3f}), command nMSE vs eq. 7 {e['command_nmse']:.4f}")
+        print(f"  safety in MuJoCo: {t['episodes']} episodes, {t['aborted_episodes']} aborted, "
+              f"{t['braked_episodes']} braked, {t['clipped_on_policy']} commands clipped; "
+              f"largest on-policy command step {t['max_command_step']:.3f} N·m (eq. 7 on the "
+              f"path: {e['max_command_step_analytical']:.3f} N·m)")
     traj = osrl.Trajectory(ctrl.robot, a.trajectory)
     ev = evaluate(ctrl, traj, a.periods)
     series = ev.pop("series")
