@@ -4,6 +4,7 @@
 - ``osrl.Robot``: rigid-body dynamics of a built-in robot or a URDF (the crate ``osrl-dynamics``);
 - ``osrl.LearnedController``, ``osrl.Learner``, ``osrl.train``: the learned operational space
   controller (the crate ``osrl-learn``), stepped from Python and trained on a Python robot;
+- ``osrl.Trajectory``: the task-space path ``osrl.train`` follows, sampled in time;
 - ``osrl.Measurement`` and ``osrl.RobotProtocol``: what a robot gives a learner (ROBOT_PROTOCOL.md);
 - ``osrl.mujoco``: a MuJoCo model as such a robot, and the MuJoCo model of a built-in robot
   (imported on use: it needs the ``mujoco`` package).
@@ -18,6 +19,7 @@ from ._osrl import (
     Lwpr,
     NoSupportError,
     Robot,
+    Trajectory,
     __version__,
     train,
 )
@@ -32,6 +34,7 @@ __all__ = [
     "NoSupportError",
     "Robot",
     "RobotProtocol",
+    "Trajectory",
     "__version__",
     "train",
 ]

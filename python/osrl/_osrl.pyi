@@ -295,3 +295,31 @@ def train(robot: Any, trajectory: str = "figure8", minutes: float = 30.0, seed: 
     The GIL is released while training, taken for each ``robot.step``; Ctrl-C stops it. An
     exception raised by the robot stops the training and is raised again."""
     ...
+
+class Trajectory:
+    """The task-space path ``osrl.train(robot, kind, config={"trajectory": config})`` follows
+    for osrl's model ``robot`` (a built-in name or URDF path): ``sample(t)`` gives the targets
+    a loop outside the trainer (a MuJoCo evaluation, a plot) tracks. ``kind``: ``figure8``,
+    ``circle`` or ``min_jerk``; ``config``: ``[trajectory]`` keys (unknown keys raise
+    ``ValueError``)."""
+
+    def __init__(self, robot: str, kind: str = "figure8",
+                 config: Optional[Dict[str, Any]] = None) -> None: ...
+    def sample(self, t: float) -> Tuple[Array, Array, Array]:
+        """``(x_d, xd_d, xdd_d)`` at time ``t`` (s) on the task axes (m, m/s, m/s²); times
+        before 0 give the start."""
+        ...
+    @property
+    def period(self) -> float:
+        """Seconds of one cycle of the path."""
+        ...
+    @property
+    def ramp(self) -> float:
+        """Seconds of the smooth start (0 for minimum-jerk moves)."""
+        ...
+    @property
+    def home(self) -> Array:
+        """The home posture (rad): at rest on the start of the path."""
+        ...
+    @property
+    def task_axes(self) -> List[int]: ...

@@ -5,7 +5,8 @@
 //! - [`robot::PyRobot`] (`osrl.Robot`): the `osrl-dynamics` model of a built-in robot or a URDF;
 //! - [`controller::PyLearnedController`] (`osrl.LearnedController`), [`learner::PyLearner`]
 //!   (`osrl.Learner`) and [`train::train`] (`osrl.train`): the learned controller of
-//!   `osrl-learn`, stepped from Python and trained on a Python robot by the Rust trainer.
+//!   `osrl-learn`, stepped from Python and trained on a Python robot by the Rust trainer;
+//! - [`trajectory::PyTrajectory`] (`osrl.Trajectory`): the task-space path training follows.
 //!
 //! Conventions shared by every method: inputs are float64 numpy arrays (or lists of numbers);
 //! a wrong shape, a wrong dtype or a non-finite value raises `ValueError` before anything
@@ -26,6 +27,7 @@ mod meas;
 mod pybot;
 mod robot;
 mod train;
+mod trajectory;
 
 use pyo3::prelude::*;
 
@@ -37,6 +39,7 @@ fn _osrl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<controller::PyLearnedController>()?;
     m.add_class::<learner::PyLearner>()?;
     m.add_function(wrap_pyfunction!(train::train, m)?)?;
+    m.add_class::<trajectory::PyTrajectory>()?;
     m.add(
         "NoSupportError",
         m.py().get_type::<errors::NoSupportError>(),

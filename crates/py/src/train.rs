@@ -71,12 +71,7 @@ pub fn train(
         },
     };
     let (lcfg, mut tcfg, mut traj) = sections(config)?;
-    traj.kind =
-        serde_json::from_value(serde_json::Value::String(trajectory.into())).map_err(|_| {
-            PyValueError::new_err(format!(
-                "trajectory '{trajectory}': expected figure8, circle or min_jerk"
-            ))
-        })?;
+    crate::trajectory::set_kind(&mut traj, trajectory)?;
     if !(minutes >= 0.0 && minutes.is_finite()) {
         return Err(PyValueError::new_err(format!(
             "minutes = {minutes}: need a finite number ≥ 0"
