@@ -10,7 +10,7 @@ use osrl_control::RobotChange;
 use osrl_dynamics::{Measurement, Model, Robot, SimConfig, SimRobot};
 use osrl_learn::eval::EvalResult;
 use osrl_learn::train::{Progress, TrainConfig, TrainSummary};
-use osrl_learn::{AdaptationConfig, Learner};
+use osrl_learn::{AdaptationConfig, AdaptationSignal, Learner};
 use std::cell::Cell;
 use std::rc::Rc;
 
@@ -30,6 +30,8 @@ pub struct Adapted {
     pub peak_level: f64,
     /// Learning steps taken while re-adapting.
     pub adapting_steps: u64,
+    /// The re-adaptation's state at each evaluation: `(simulated minutes, signal)`.
+    pub signal: Vec<(f64, AdaptationSignal)>,
 }
 
 impl Adapted {
@@ -87,7 +89,11 @@ pub fn adapt(
     learner.reset_adaptation();
     let mut sim = simulator(setup, changed.clone(), cfg.seed)?;
     let axes = changed.task_axes().to_vec();
-    let mut evaluate = |l: &mut Learner| ev.evaluate(l);
+    let mut signal = Vec::new();
+    let mut evaluate = |l: &mut Learner| {
+        signal.push((0.0, l.adaptation()));
+        ev.evaluate(l)
+    };
     let summary = osrl_learn::train::train(
         &mut sim,
         learner,
@@ -97,13 +103,18 @@ pub fn adapt(
         &mut evaluate,
         observe,
     )?;
-    let signal = learner.adaptation();
+    let last = learner.adaptation();
+    // One signal per evaluation, at the learning curve's times.
+    for (p, (t, _)) in signal.iter_mut().zip(&summary.learning_curve) {
+        p.0 = *t;
+    }
     Ok(Adapted {
         nominal,
         before,
         summary,
-        peak_level: signal.peak_level,
-        adapting_steps: signal.adapting_steps,
+        peak_level: last.peak_level,
+        adapting_steps: last.adapting_steps,
+        signal,
     })
 }
 

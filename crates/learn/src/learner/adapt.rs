@@ -3,9 +3,10 @@
 //! measured `ẍ` before they learn it; the activation-weighted squared error over the fields' own
 //! mean squared residual is the error ratio, whose running level drives the strength `a ∈ [0, 1]`.
 //! While `a > 0`, each active field forgets its dynamics and its controller's statistics faster
-//! (factor `λ^(a·w)` per sample, `w` its activation), re-solves its dynamics at every M-step and
-//! may move its controller further per M-step (trust region × `1 + a (s − 1)`). Fields the arm
-//! does not visit forget nothing.
+//! (factor `λ^(a·w)` per sample, `w` its activation), re-solves its dynamics at every M-step,
+//! weights new samples by a cost shrunk by `1 − a` and may move its controller further per
+//! M-step (trust region × `1 + a (s − 1)`). When the level falls back, `a` is released over
+//! `release_seconds`. Fields the arm does not visit forget nothing.
 
 use crate::config::AdaptationConfig;
 use serde::Serialize;
@@ -43,8 +44,9 @@ impl AdaptationSignal {
         self.level += alpha * (ratio - self.level);
         self.peak_level = self.peak_level.max(self.level);
         self.checks += 1;
-        self.strength =
-            ((self.level - cfg.on_ratio) / (cfg.full_ratio - cfg.on_ratio)).clamp(0.0, 1.0);
+        let target = ((self.level - cfg.on_ratio) / (cfg.full_ratio - cfg.on_ratio)).clamp(0.0, 1.0);
+        let release = dt_check / cfg.release_seconds;
+        self.strength = target.max(self.strength - release).max(0.0);
     }
 
     /// The extra forgetting factors `(dynamics, controller)` for a field with activation `w`.
@@ -54,6 +56,14 @@ impl AdaptationSignal {
             cfg.dynamics_forgetting.powf(e),
             cfg.controller_forgetting.powf(e),
         )
+    }
+
+    /// The cost a sample of cost `r` is weighted with: `(1 − a) r`. A change of the robot
+    /// changes the costs of the new samples; with `τ` fitted to the old, small costs, RWR would
+    /// give them no weight, so while re-adapting the samples count by their activation (the
+    /// hindsight target is already the minimum-norm one).
+    pub(crate) fn cost(&self, r: f64) -> f64 {
+        r * (1.0 - self.strength)
     }
 
     /// The factor on the RWR trust region.

@@ -74,7 +74,9 @@ impl Step<'_> {
         if dt > 0.0 && !self.gravity_frozen {
             self.models.gravity.learn(q0, qd0, q, qd, u, dt)?;
         }
-        let static_on = !self.gravity_frozen || self.cfg.gravity.static_on_policy;
+        let ad = &self.cfg.adaptation;
+        let paused = ad.enabled && ad.pause_static_gravity && self.adapt.strength > 0.0;
+        let static_on = (!self.gravity_frozen || self.cfg.gravity.static_on_policy) && !paused;
         if let (true, true, Some(g)) = (dt > 0.0, static_on, self.models.gravity_static.as_mut()) {
             g.learn(q0, qd0, q, qd, u, dt)?;
         }
@@ -243,6 +245,7 @@ impl Step<'_> {
                 local.dynamics.observe(&ws.phi_d, xdd, 0.0, a.w)?;
             }
             f.controller_local(&mut ws.phi, q, &local.center);
+            let r = if adapting { self.adapt.cost(r) } else { r };
             match local.observe(&ws.phi, &ws.target, r, a.w, update_every, pace)? {
                 Some(MStep::Done) => self.stats.m_steps += 1,
                 Some(MStep::Failed) => self.stats.failed_m_steps += 1,
