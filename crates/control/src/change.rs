@@ -148,11 +148,7 @@ impl RobotChange {
             };
             solve_ik(&changed, &mut data, &traj.sample(t).x, &mut q, &opts)?;
             let g = osrl_dynamics::gravity(&changed, &mut data, &q)?;
-            if let Some((j, tau)) = g
-                .iter()
-                .enumerate()
-                .find(|(j, tau)| tau.abs() > limits[*j])
-            {
+            if let Some((j, tau)) = g.iter().enumerate().find(|(j, tau)| tau.abs() > limits[*j]) {
                 return Err(spec_error(
                     &self.to_string(),
                     format!(
@@ -259,7 +255,13 @@ mod tests {
         let c: RobotChange = "mass=1.3,friction=2,payload=0.5".parse().unwrap();
         assert_eq!((c.mass_scale, c.friction_scale, c.payload), (1.3, 2.0, 0.5));
         assert_eq!(c.to_string(), "mass=1.3,friction=2,payload=0.5");
-        assert_eq!("friction=off".parse::<RobotChange>().unwrap().friction_scale, 0.0);
+        assert_eq!(
+            "friction=off"
+                .parse::<RobotChange>()
+                .unwrap()
+                .friction_scale,
+            0.0
+        );
         assert!("none".parse::<RobotChange>().unwrap().is_none());
         for (bad, word) in [
             ("mass=-1.3", "mass"),
@@ -279,10 +281,19 @@ mod tests {
     #[test]
     fn the_change_goes_into_the_robot() {
         let truth = robots::planar3();
-        let total = |m: &osrl_dynamics::Model| m.links().iter().map(|l| l.inertia.mass).sum::<f64>();
-        let loaded = "payload=0.5".parse::<RobotChange>().unwrap().apply(&truth).unwrap();
+        let total =
+            |m: &osrl_dynamics::Model| m.links().iter().map(|l| l.inertia.mass).sum::<f64>();
+        let loaded = "payload=0.5"
+            .parse::<RobotChange>()
+            .unwrap()
+            .apply(&truth)
+            .unwrap();
         assert!((total(&loaded) - total(&truth) - 0.5).abs() < 1e-12);
-        let heavy = "mass=1.3".parse::<RobotChange>().unwrap().apply(&truth).unwrap();
+        let heavy = "mass=1.3"
+            .parse::<RobotChange>()
+            .unwrap()
+            .apply(&truth)
+            .unwrap();
         assert!((total(&heavy) - 1.3 * total(&truth)).abs() < 1e-9);
         let q = truth.spec().q_rest.clone();
         let (mut d0, mut d1) = (truth.data(), heavy.data());
@@ -305,6 +316,9 @@ mod tests {
             .check_holdable(&truth, &traj, &q0, 16)
             .unwrap_err()
             .to_string();
-        assert!(e.contains("cannot hold") && e.contains("torque limit"), "{e}");
+        assert!(
+            e.contains("cannot hold") && e.contains("torque limit"),
+            "{e}"
+        );
     }
 }

@@ -51,7 +51,12 @@ impl Adapted {
 /// # Errors
 /// [`osrl_control::ControlError::ChangeSpec`] saying what is wrong.
 pub fn checked_change(setup: &Setup, change: &RobotChange) -> Result<Model> {
-    change.check_holdable(setup.model(), setup.trajectory(), setup.home(), HOLD_SAMPLES)?;
+    change.check_holdable(
+        setup.model(),
+        setup.trajectory(),
+        setup.home(),
+        HOLD_SAMPLES,
+    )?;
     Ok(change.apply(setup.model())?)
 }
 

@@ -42,7 +42,15 @@ fn settings(setup: &Setup, minutes: f64) -> TrainConfig {
 fn run(setup: &Setup, learner: &mut Learner, change: &str, minutes: f64) -> Adapted {
     let change: RobotChange = change.parse().unwrap();
     let cfg = settings(setup, minutes);
-    adapt(setup, learner, &change, AdaptationConfig::default(), &cfg, &mut |_| {}).unwrap()
+    adapt(
+        setup,
+        learner,
+        &change,
+        AdaptationConfig::default(),
+        &cfg,
+        &mut |_| {},
+    )
+    .unwrap()
 }
 
 /// A 0.5 kg payload: the level rises past `on_ratio` within the first evaluation interval and

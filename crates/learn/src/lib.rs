@@ -32,8 +32,7 @@ mod variant;
 
 pub use config::{
     AdaptationConfig, ControllerConfig, CostKind, DynamicsConfig, ExplorationConfig, GravityConfig,
-    GuardConfig,
-    LearnerConfig, NoiseProcess, NominalConfig, PartitionConfig,
+    GuardConfig, LearnerConfig, NoiseProcess, NominalConfig, PartitionConfig,
 };
 pub use controller::{LearnedController, SourceCounts};
 pub use error::{LearnError, Result};

@@ -48,7 +48,10 @@ fn the_residual_matches_its_definition() {
     let direct = num / (2.0 * sw);
     let fast = r.mean_sq_residual();
     assert!(direct > 1e-4, "{direct}");
-    assert!((fast - direct).abs() < 1e-9 * direct.max(1.0), "{fast} vs {direct}");
+    assert!(
+        (fast - direct).abs() < 1e-9 * direct.max(1.0),
+        "{fast} vs {direct}"
+    );
 }
 
 /// `decay(f)` between two samples is what forgetting `f` does: the same `θ`, bit for bit; and

@@ -11,6 +11,8 @@
 //! The config file's `[train]` section sets the run (its gains are replaced by the saved
 //! controller's, its babbling is skipped, evaluations come at least every 0.25 minutes) and
 //! `[learner.adaptation]` the re-adaptation; the rest of `[learner]` is the saved controller's.
+//! Without a `[train]` section the episodes run the whole path from the start (no curriculum)
+//! and brake at 3 cm of task error.
 
 use crate::config::Config;
 use crate::progress;
@@ -52,6 +54,9 @@ pub struct Args {
     pub json: bool,
 }
 
+/// The brake error of an adaptation run without a `[train]` section (m).
+const ADAPT_BRAKE_ERROR: f64 = 0.03;
+
 /// The largest interval between evaluations (simulated minutes): four points per minute.
 const EVAL_EVERY_MAX: f64 = 0.25;
 
@@ -62,7 +67,9 @@ pub fn run(a: Args) -> Result<()> {
         bail!(
             "{}: [{s}] has no meaning for `osrl adapt` (robot, trajectory and simulator are the \
              saved controller's): remove it",
-            a.config.as_deref().map_or("config".into(), |p| p.display().to_string())
+            a.config
+                .as_deref()
+                .map_or("config".into(), |p| p.display().to_string())
         );
     }
     cfg.validate()?;
@@ -77,6 +84,12 @@ pub fn run(a: Args) -> Result<()> {
     }
     let setup = Setup::from_saved(&saved)?;
     let mut train = continuation(&cfg.train, minutes);
+    if !sections.iter().any(|s| s == "train") {
+        // Without a [train] section: the whole path from the first episode (the controller was
+        // trained to it), braked only at 3 cm (a changed robot starts ~1 cm off).
+        train.curriculum.stages.clear();
+        train.curriculum.brake_error = ADAPT_BRAKE_ERROR;
+    }
     train.gains = saved.info().gains;
     train.seed = a.seed.unwrap_or(cfg.train.seed);
     if !(train.eval_every_minutes > 0.0 && train.eval_every_minutes <= EVAL_EVERY_MAX) {
@@ -121,7 +134,11 @@ pub fn run(a: Args) -> Result<()> {
 /// The human-readable summary.
 fn describe(r: &Adapted, change: &RobotChange) -> String {
     let s = &r.summary;
-    let last = s.learning_curve.last().map(|(_, e)| e.clone()).unwrap_or_default();
+    let last = s
+        .learning_curve
+        .last()
+        .map(|(_, e)| e.clone())
+        .unwrap_or_default();
     let m = |v: Option<f64>| v.map_or("never".into(), |t| format!("{t:.2} min"));
     format!(
         "change {change}: tracking {:.3} mm unchanged, {:.3} mm changed before learning, {:.3} mm \
@@ -145,7 +162,11 @@ fn describe(r: &Adapted, change: &RobotChange) -> String {
 /// `osrl train --json`'s keys for the adaptation run, plus the keys of issue 26.
 fn adapt_json(r: &Adapted, change: &RobotChange, robot: &str) -> Result<serde_json::Value> {
     let s = &r.summary;
-    let last = s.learning_curve.last().map(|(_, e)| e.clone()).unwrap_or_default();
+    let last = s
+        .learning_curve
+        .last()
+        .map(|(_, e)| e.clone())
+        .unwrap_or_default();
     let mut j = summary_json(s, &EvalSummary::from(&last), robot)?;
     let mut curve = vec![(0.0, r.before.clone())];
     curve.extend(s.learning_curve.iter().cloned());

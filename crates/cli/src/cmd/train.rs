@@ -10,9 +10,9 @@
 
 use crate::config::Config;
 use crate::progress;
+use crate::train_json::{rejected, summary_json, MAX_REJECTED_SHARE};
 use crate::util::{print_json, trajectory_kind};
 use anyhow::{bail, Context, Result};
-use crate::train_json::{rejected, summary_json, MAX_REJECTED_SHARE};
 use osrl_control::RobotChange;
 use osrl_experiments::adapt::{train_with_change, ChangeSchedule};
 use osrl_experiments::stats::{measured, EvalSummary};
@@ -125,7 +125,9 @@ pub fn run(a: Args) -> Result<()> {
     let bar = progress::train_bar(None, &format!("train {}", model.name()), minutes);
     let schedule = match (&a.change, a.change_at) {
         (Some(change), Some(at)) => {
-            if !(at >= 0.0 && at <= minutes) || a.revert_at.is_some_and(|r| !(r > at && r <= minutes)) {
+            if !(at >= 0.0 && at <= minutes)
+                || a.revert_at.is_some_and(|r| !(r > at && r <= minutes))
+            {
                 bail!(
                     "--change-at {at} / --revert-at {:?}: need 0 ≤ change-at < revert-at ≤ the \
                      run's {minutes} minutes",
@@ -241,7 +243,6 @@ fn print_summary(
     Ok(())
 }
 
-
 /// The keys of a run with a change: the change and its schedule, the tracking on the last
 /// evaluation before it (the nominal), and the minutes from the change (and from the revert) to
 /// 1 mm and to twice the nominal tracking (`null`: never).
@@ -255,7 +256,9 @@ fn change_keys(s: &TrainSummary, c: &ChangeSchedule) -> Vec<(&'static str, serde
     let after = |from: f64, until: f64, pred: &dyn Fn(f64) -> bool| {
         curve
             .iter()
-            .find(|(t, e)| *t > from + 1e-9 && *t <= until + 1e-9 && !e.diverged && pred(e.tracking_rms_mm))
+            .find(|(t, e)| {
+                *t > from + 1e-9 && *t <= until + 1e-9 && !e.diverged && pred(e.tracking_rms_mm)
+            })
             .map(|(t, _)| t - from)
     };
     let end = c.revert_at.unwrap_or(f64::INFINITY);
@@ -275,7 +278,9 @@ fn change_keys(s: &TrainSummary, c: &ChangeSchedule) -> Vec<(&'static str, serde
         ),
         (
             "minutes_to_2x_nominal_after_revert",
-            json!(c.revert_at.and_then(|r| after(r, f64::INFINITY, &twice(nominal)))),
+            json!(c
+                .revert_at
+                .and_then(|r| after(r, f64::INFINITY, &twice(nominal)))),
         ),
     ]
 }

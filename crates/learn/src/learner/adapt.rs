@@ -44,7 +44,8 @@ impl AdaptationSignal {
         self.level += alpha * (ratio - self.level);
         self.peak_level = self.peak_level.max(self.level);
         self.checks += 1;
-        let target = ((self.level - cfg.on_ratio) / (cfg.full_ratio - cfg.on_ratio)).clamp(0.0, 1.0);
+        let target =
+            ((self.level - cfg.on_ratio) / (cfg.full_ratio - cfg.on_ratio)).clamp(0.0, 1.0);
         let release = dt_check / cfg.release_seconds;
         self.strength = target.max(self.strength - release).max(0.0);
     }

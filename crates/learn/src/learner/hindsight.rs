@@ -7,10 +7,10 @@
 use super::cost::{cost, shrink_target};
 use super::nominal::nominal_into;
 use super::stats::{LearnerStats, Scratch};
+use super::AdaptationSignal;
 use super::{Features, Learner, Models, State};
 use crate::config::LearnerConfig;
 use crate::error::Result;
-use super::AdaptationSignal;
 use crate::local::{LocalSpec, MStep, Pace};
 use lwpr::RfEvent;
 use osrl_dynamics::Measurement;
