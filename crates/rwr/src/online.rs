@@ -141,7 +141,7 @@ impl OnlineRwr {
     /// statistics, `Σ w ‖u − θᵀφ‖² / (d Σw)` (0 when empty). Does not allocate.
     pub fn mean_sq_residual(&self) -> f64 {
         let s = &self.stats;
-        if !(s.sw > 0.0) {
+        if s.sw.is_nan() || s.sw <= 0.0 {
             return 0.0;
         }
         let theta = self.policy.theta();

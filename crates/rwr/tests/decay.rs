@@ -1,6 +1,6 @@
 //! The online form's extra forgetting and its residual, against their definitions.
 
-use rand::{Rng, SeedableRng};
+use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rwr::{OnlineRwr, RwrConfig};
 
