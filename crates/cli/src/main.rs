@@ -9,6 +9,7 @@ mod config;
 mod fuzz;
 mod progress;
 mod robot_entry;
+mod train_json;
 mod util;
 
 /// The fuzz run's allocator: it bounds what one case may allocate (`fuzz/guard.rs`).
@@ -44,6 +45,8 @@ enum Command {
     Simulate(cmd::simulate::Args),
     /// Train the learned operational space controller (babbling, then on-policy RWR) and save it.
     Train(cmd::train::Args),
+    /// Keep learning with a saved controller on a changed robot (payload, masses, friction).
+    Adapt(cmd::adapt::Args),
     /// Evaluate a saved learned controller against the analytical optimum u* (eq. 7).
     Eval(cmd::eval::Args),
     /// Run the experiments and write the report folder (index.html, results.json, figures).
@@ -63,6 +66,7 @@ fn main() {
         Command::Toy(a) => cmd::toy::run(a),
         Command::Simulate(a) => cmd::simulate::run(a),
         Command::Train(a) => cmd::train::run(a),
+        Command::Adapt(a) => cmd::adapt::run(a),
         Command::Eval(a) => cmd::eval::run(a),
         Command::Reproduce(a) => cmd::reproduce::run(a),
         Command::Report(a) => cmd::report::run(a),

@@ -42,6 +42,10 @@ pub enum ControlError {
     /// A model-error description (`--model-error`) cannot be parsed or is out of range.
     #[error("invalid model error '{spec}': {reason}")]
     ModelErrorSpec { spec: String, reason: String },
+    /// A change of the robot (`--change`) cannot be parsed, is out of range, or leaves an arm
+    /// that cannot hold itself within its torque limits.
+    #[error("invalid robot change '{spec}': {reason}")]
+    ChangeSpec { spec: String, reason: String },
     /// A [`crate::TaskController`] defined outside this crate failed (e.g. the learned
     /// controller of `osrl-learn`, whose error converts into this one): which controller, and
     /// its error's message.

@@ -21,6 +21,7 @@
 #[cfg(doctest)]
 pub struct ReadmeDoctests;
 
+mod change;
 mod closed_loop;
 mod config;
 mod controller;
@@ -38,6 +39,7 @@ mod trajectory;
 mod trajectory_config;
 mod warp;
 
+pub use change::RobotChange;
 pub use closed_loop::{
     drive, run_closed_loop, run_steps, Ended, Metrics, Run, Series, StepObserver, StepView,
     MAX_RUN_STEPS,

@@ -3,6 +3,7 @@
 // deliberate.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+pub mod adapt;
 pub mod analytical;
 mod compare;
 mod error;

@@ -31,14 +31,14 @@ pub mod train;
 mod variant;
 
 pub use config::{
-    ControllerConfig, CostKind, DynamicsConfig, ExplorationConfig, GravityConfig, GuardConfig,
-    LearnerConfig, NoiseProcess, NominalConfig, PartitionConfig,
+    AdaptationConfig, ControllerConfig, CostKind, DynamicsConfig, ExplorationConfig, GravityConfig,
+    GuardConfig, LearnerConfig, NoiseProcess, NominalConfig, PartitionConfig,
 };
 pub use controller::{LearnedController, SourceCounts};
 pub use error::{LearnError, Result};
 pub use forward::ForwardModel;
 pub use gravity::{GravityModel, StaticGate};
-pub use learner::{CommandSource, Learner, LearnerStats, EXTRAPOLATION_CUTOFF};
+pub use learner::{AdaptationSignal, CommandSource, Learner, LearnerStats, EXTRAPOLATION_CUTOFF};
 pub use local::LocalSummary;
 pub use saved::{
     load_robot, ModelInfo, SavedModel, CONTROL_PERIOD_RANGE, MODEL_MAGIC, MODEL_VERSION,

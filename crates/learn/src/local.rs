@@ -52,6 +52,15 @@ pub(crate) struct LocalSpec<'a> {
     pub trained_ess: f64,
 }
 
+/// How fast a field learns at an M-step: the dynamics are re-solved at every `solve_every`-th
+/// M-step (at every one with `solve_always`), the trust region is widened by `trust_scale`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Pace {
+    pub solve_every: u64,
+    pub solve_always: bool,
+    pub trust_scale: f64,
+}
+
 /// The outcome of one M-step of a local controller.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum MStep {
@@ -61,8 +70,8 @@ pub(crate) enum MStep {
 
 impl Local {
     /// Records one hindsight sample (`phi → target`, cost `r`, activation `w`) and runs the
-    /// M-step when `update_every` samples are pending; the local dynamics are re-solved at every
-    /// `solve_every`-th M-step. `None` when no M-step was due.
+    /// M-step when `update_every` samples are pending, at the `pace` given (when the local
+    /// dynamics are re-solved, how far the controller may move). `None` when no M-step was due.
     pub(crate) fn observe(
         &mut self,
         phi: &[f64],
@@ -70,7 +79,7 @@ impl Local {
         r: f64,
         w: f64,
         update_every: usize,
-        solve_every: u64,
+        pace: Pace,
     ) -> Result<Option<MStep>> {
         self.rwr.observe(phi, target, r, w)?;
         self.pending += 1;
@@ -78,10 +87,11 @@ impl Local {
             return Ok(None);
         }
         self.pending = 0;
-        if self.updates.is_multiple_of(solve_every) && self.dynamics.update().is_ok() {
+        let solve = pace.solve_always || self.updates.is_multiple_of(pace.solve_every);
+        if solve && self.dynamics.update().is_ok() {
             self.dynamics_updates += 1;
         }
-        Ok(Some(match self.rwr.update() {
+        Ok(Some(match self.rwr.update_scaled(pace.trust_scale) {
             Ok(info) => {
                 self.ess = info.ess;
                 self.updates += 1;

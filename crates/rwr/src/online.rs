@@ -128,10 +128,54 @@ impl OnlineRwr {
         Ok(())
     }
 
+    /// Extra forgetting: multiplies every weight in the statistics by `factor` (in (0, 1]; other
+    /// values change nothing), as `factor` would as the forgetting factor of one sample. The
+    /// learner uses it to forget faster while its models no longer fit the robot.
+    pub fn decay(&mut self, factor: f64) {
+        if factor > 0.0 && factor < 1.0 {
+            self.log_scale += factor.ln();
+        }
+    }
+
+    /// The weighted mean squared residual per output dimension of the current `θ` over the
+    /// statistics, `Σ w ‖u − θᵀφ‖² / (d Σw)` (0 when empty). Does not allocate.
+    pub fn mean_sq_residual(&self) -> f64 {
+        let s = &self.stats;
+        if s.sw.is_nan() || s.sw <= 0.0 {
+            return 0.0;
+        }
+        let theta = self.policy.theta();
+        let (p, d) = (theta.nrows(), theta.ncols());
+        let mut total = s.yy;
+        for k in 0..d {
+            let t = theta.column(k);
+            let mut quad = 0.0;
+            let mut lin = 0.0;
+            for j in 0..p {
+                lin += t[j] * s.cross[(j, k)];
+                let col = t[j];
+                quad += s.gram[(j, j)] * col * col;
+                let mut off = 0.0;
+                for i in j + 1..p {
+                    off += s.gram[(i, j)] * t[i];
+                }
+                quad += 2.0 * col * off;
+            }
+            total += quad - 2.0 * lin;
+        }
+        (total / (d as f64 * s.sw)).max(0.0)
+    }
+
     /// M-step from the statistics: `θ` by eq. 23 (with ridge), `σ` by eq. 24 (floored, unless
     /// off), `τ` by eq. 28 (and safeguards, unless fixed). Fails, changing nothing, when no
     /// sample has weight or the Gram matrix is singular (too few samples and no ridge).
     pub fn update(&mut self) -> Result<StepInfo> {
+        self.update_scaled(1.0)
+    }
+
+    /// [`Self::update`] with the trust region (if any) widened by `trust_scale` (≥ 1 widens;
+    /// the learner's "learning rate" while it re-adapts to a changed robot).
+    pub fn update_scaled(&mut self, trust_scale: f64) -> Result<StepInfo> {
         let prior = self.cfg.ridge_to_previous.then(|| self.policy.theta());
         let msr = self
             .solver
@@ -142,7 +186,7 @@ impl OnlineRwr {
                 self.stats.sw,
                 self.policy.theta(),
                 &mut self.solver.theta,
-                delta,
+                delta * trust_scale,
             ),
             None => 1.0,
         };

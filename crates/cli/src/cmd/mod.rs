@@ -1,5 +1,6 @@
 //! One module per subcommand; no command imports another.
 
+pub mod adapt;
 pub mod bench;
 pub mod dynamics;
 pub mod eval;

@@ -10,12 +10,15 @@
 
 use crate::config::Config;
 use crate::progress;
+use crate::train_json::{rejected, summary_json, MAX_REJECTED_SHARE};
 use crate::util::{print_json, trajectory_kind};
 use anyhow::{bail, Context, Result};
-use osrl_experiments::stats::{curve_points, measured, EvalSummary};
+use osrl_control::RobotChange;
+use osrl_experiments::adapt::{train_with_change, ChangeSchedule};
+use osrl_experiments::stats::{measured, EvalSummary};
 use osrl_experiments::Setup;
 use osrl_learn::train::TrainSummary;
-use serde_json::{json, Value};
+use serde_json::json;
 use std::io::Write;
 use std::path::PathBuf;
 
@@ -38,6 +41,17 @@ pub struct Args {
     /// Seed of the babbling, the exploration noise and the simulator (default: the config's, 0).
     #[arg(long)]
     pub seed: Option<u64>,
+    /// Change the simulated robot at this simulated minute of training (with `--change`): the
+    /// recovery shows on the learning curve; the learner's re-adaptation is switched on.
+    #[arg(long, requires = "change")]
+    pub change_at: Option<f64>,
+    /// The change (the grammar of `--model-error`, applied to the robot itself):
+    /// `mass=1.3`, `payload=0.5`, `friction=2`, `com=0.02,seed=7`, combined with commas.
+    #[arg(long, requires = "change_at")]
+    pub change: Option<RobotChange>,
+    /// Remove the change again at this simulated minute (after `--change-at`).
+    #[arg(long, requires = "change_at")]
+    pub revert_at: Option<f64>,
     /// Where to save the learned controller.
     #[arg(long)]
     pub out: PathBuf,
@@ -109,9 +123,32 @@ pub fn run(a: Args) -> Result<()> {
     let model = setup.model().clone();
     let minutes = cfg.train.minutes;
     let bar = progress::train_bar(None, &format!("train {}", model.name()), minutes);
-    let (learner, summary) = setup
-        .train(&model, &mut |p| progress::update(&bar, minutes, p))
-        .context("training")?;
+    let schedule = match (&a.change, a.change_at) {
+        (Some(change), Some(at)) => {
+            if !(at >= 0.0 && at <= minutes)
+                || a.revert_at.is_some_and(|r| !(r > at && r <= minutes))
+            {
+                bail!(
+                    "--change-at {at} / --revert-at {:?}: need 0 ≤ change-at < revert-at ≤ the \
+                     run's {minutes} minutes",
+                    a.revert_at
+                );
+            }
+            osrl_experiments::adapt::checked_change(&setup, change)?;
+            Some(ChangeSchedule {
+                change: change.clone(),
+                at,
+                revert_at: a.revert_at,
+            })
+        }
+        _ => None,
+    };
+    let mut observe = |p: &osrl_learn::train::Progress| progress::update(&bar, minutes, p);
+    let (learner, summary) = match &schedule {
+        None => setup.train(&model, &mut observe),
+        Some(s) => train_with_change(&setup, s, cfg.learner.adaptation.clone(), &mut observe),
+    }
+    .context("training")?;
     bar.finish_and_clear();
     let bytes = setup.saved(learner, &summary)?.to_bytes()?;
     let saved = crate::util::save_result("trained model", &a.out, &bytes);
@@ -146,11 +183,13 @@ pub fn run(a: Args) -> Result<()> {
         writeln!(text, "wrote {}", a.out.display())?;
     }
     if a.json {
-        print_json(&summary_json(
-            &summary,
-            &EvalSummary::from(&last),
-            model.name(),
-        )?);
+        let mut j = summary_json(&summary, &EvalSummary::from(&last), model.name())?;
+        if let (Some(s), Some(o)) = (&schedule, j.as_object_mut()) {
+            for (k, v) in change_keys(&summary, s) {
+                o.insert(k.into(), v);
+            }
+        }
+        print_json(&j);
     }
     saved
 }
@@ -204,44 +243,44 @@ fn print_summary(
     Ok(())
 }
 
-/// Above this share of rejected samples a training run warns.
-const MAX_REJECTED_SHARE: f64 = 0.01;
-
-/// Samples the learner rejected as absurd, and their share of all it saw (0 without any).
-fn rejected(s: &TrainSummary) -> (u64, f64) {
-    let (r, n) = (s.stats.rejected, s.stats.samples + s.stats.rejected);
-    (r, if n == 0 { 0.0 } else { r as f64 / n as f64 })
-}
-
-/// The JSON of a training run: the final evaluation's metrics, the run's numbers, the curve.
-fn summary_json(s: &TrainSummary, final_eval: &EvalSummary, robot: &str) -> Result<Value> {
-    let mut j = serde_json::to_value(final_eval)?;
-    let o = j
-        .as_object_mut()
-        .context("an evaluation is a JSON object")?;
-    let extra = json!({
-        "robot": robot,
-        "n_local_models": s.n_local_models,
-        "sim_training_minutes": s.sim_training_minutes,
-        "wall_seconds": s.wall_seconds,
-        "realtime_factor": s.realtime_factor,
-        "max_command_step": s.max_command_step,
-        "max_torque_rate": s.max_torque_rate,
-        "rate_limited": s.rate_limited(),
-        "clipped_on_policy": s.clipped_on_policy,
-        "command_step_curve": s.step_curve,
-        "minutes_to_1mm": s.minutes_to(|e| e.tracking_rms_mm <= 1.0),
-        "minutes_to_nmse_0.05": s.minutes_to(|e| e.command_nmse <= 0.05),
-        "episodes": s.episodes,
-        "aborted_episodes": s.aborted_episodes,
-        "braked_episodes": s.braked_episodes,
-        "counters": s.stats,
-        "rejected_samples": rejected(s).0,
-        "rejected_share": rejected(s).1,
-        "learning_curve": curve_points(&s.learning_curve),
-    });
-    for (k, v) in extra.as_object().into_iter().flatten() {
-        o.insert(k.clone(), v.clone());
-    }
-    Ok(j)
+/// The keys of a run with a change: the change and its schedule, the tracking on the last
+/// evaluation before it (the nominal), and the minutes from the change (and from the revert) to
+/// 1 mm and to twice the nominal tracking (`null`: never).
+fn change_keys(s: &TrainSummary, c: &ChangeSchedule) -> Vec<(&'static str, serde_json::Value)> {
+    let curve = &s.learning_curve;
+    let nominal = curve
+        .iter()
+        .rev()
+        .find(|(t, _)| *t <= c.at + 1e-9)
+        .map(|(_, e)| e.tracking_rms_mm);
+    let after = |from: f64, until: f64, pred: &dyn Fn(f64) -> bool| {
+        curve
+            .iter()
+            .find(|(t, e)| {
+                *t > from + 1e-9 && *t <= until + 1e-9 && !e.diverged && pred(e.tracking_rms_mm)
+            })
+            .map(|(t, _)| t - from)
+    };
+    let end = c.revert_at.unwrap_or(f64::INFINITY);
+    let twice = |nom: Option<f64>| move |mm: f64| nom.is_some_and(|n| mm <= 2.0 * n);
+    vec![
+        ("change", json!(c.change.to_string())),
+        ("change_at", json!(c.at)),
+        ("revert_at", json!(c.revert_at)),
+        ("tracking_rms_mm_before_change", json!(nominal)),
+        (
+            "minutes_to_1mm_after_change",
+            json!(after(c.at, end, &|mm| mm <= 1.0)),
+        ),
+        (
+            "minutes_to_2x_nominal_after_change",
+            json!(after(c.at, end, &twice(nominal))),
+        ),
+        (
+            "minutes_to_2x_nominal_after_revert",
+            json!(c
+                .revert_at
+                .and_then(|r| after(r, f64::INFINITY, &twice(nominal)))),
+        ),
+    ]
 }

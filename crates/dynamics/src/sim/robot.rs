@@ -104,6 +104,39 @@ impl SimRobot {
         Ok(&self.meas)
     }
 
+    /// Replaces the simulated robot's model — a payload picked up or put down, other masses,
+    /// worn joints — keeping its state, time, command, counters and noise generator: the robot
+    /// changes under its controller between two control periods. The next step measures the new
+    /// robot.
+    ///
+    /// # Errors
+    /// A model with another number of joints or task dimensions, or friction too stiff for an
+    /// explicit integrator; nothing is changed.
+    pub fn set_model(&mut self, model: Model) -> Result<()> {
+        if model.nq() != self.model.nq() || model.task_dim() != self.model.task_dim() {
+            return Err(DynamicsError::InvalidModel(format!(
+                "set_model: {} joints and a {}-D task, the robot has {} and {}",
+                model.nq(),
+                model.task_dim(),
+                self.model.nq(),
+                self.model.task_dim()
+            )));
+        }
+        let old = (
+            std::mem::replace(&mut self.data, model.data()),
+            std::mem::replace(&mut self.friction, FrictionStep::new(&model)),
+            std::mem::replace(&mut self.model, model),
+        );
+        if let Err(e) = self.check_explicit_friction() {
+            (self.data, self.friction, self.model) = old;
+            return Err(e);
+        }
+        self.tau_max = self.model.tau_max().collect();
+        self.q_min = self.model.q_min().collect();
+        self.q_max = self.model.q_max().collect();
+        Ok(())
+    }
+
     /// The simulated robot's model (for baselines and evaluation only — never hand it to a learner).
     pub fn model(&self) -> &Model {
         &self.model

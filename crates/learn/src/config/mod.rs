@@ -2,8 +2,11 @@
 //! the nominal behaviour, the gravity model, the partition, the local controllers, their local
 //! dynamics, exploration and the guards. Validated once by [`LearnerConfig::validate`].
 
+mod adaptation;
 mod groups;
 mod validate;
+
+pub use adaptation::AdaptationConfig;
 
 pub use groups::{
     ControllerConfig, CostKind, DynamicsConfig, Experimental, ExplorationConfig, GravityConfig,
@@ -30,6 +33,9 @@ pub struct LearnerConfig {
     pub exploration: ExplorationConfig,
     /// Limits on measurements and commands.
     pub guards: GuardConfig,
+    /// Re-adaptation to a changed robot (off by default).
+    #[serde(skip_serializing_if = "AdaptationConfig::is_default")]
+    pub adaptation: AdaptationConfig,
     #[doc(hidden)]
     #[serde(skip_serializing_if = "Experimental::is_default")]
     pub experimental: Experimental,

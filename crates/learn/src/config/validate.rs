@@ -26,6 +26,7 @@ impl LearnerConfig {
         self.validate_nominal(n)?;
         self.validate_models()?;
         self.validate_controllers()?;
+        self.adaptation.validate()?;
         self.validate_guards(n)
     }
 

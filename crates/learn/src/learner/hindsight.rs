@@ -7,10 +7,11 @@
 use super::cost::{cost, shrink_target};
 use super::nominal::nominal_into;
 use super::stats::{LearnerStats, Scratch};
+use super::AdaptationSignal;
 use super::{Features, Learner, Models, State};
 use crate::config::LearnerConfig;
 use crate::error::Result;
-use crate::local::{LocalSpec, MStep};
+use crate::local::{LocalSpec, MStep, Pace};
 use lwpr::RfEvent;
 use osrl_dynamics::Measurement;
 
@@ -25,6 +26,7 @@ struct Step<'a> {
     m: usize,
     dt: f64,
     gravity_frozen: bool,
+    adapt: &'a mut AdaptationSignal,
 }
 
 impl Learner {
@@ -43,6 +45,7 @@ impl Learner {
             m: self.m,
             dt: self.dt,
             gravity_frozen: self.gravity_frozen,
+            adapt: &mut self.adapt,
         }
         .run(prev, cur)
     }
@@ -71,7 +74,9 @@ impl Step<'_> {
         if dt > 0.0 && !self.gravity_frozen {
             self.models.gravity.learn(q0, qd0, q, qd, u, dt)?;
         }
-        let static_on = !self.gravity_frozen || self.cfg.gravity.static_on_policy;
+        let ad = &self.cfg.adaptation;
+        let paused = ad.enabled && ad.pause_static_gravity && self.adapt.strength > 0.0;
+        let static_on = (!self.gravity_frozen || self.cfg.gravity.static_on_policy) && !paused;
         if let (true, true, Some(g)) = (dt > 0.0, static_on, self.models.gravity_static.as_mut()) {
             g.learn(q0, qd0, q, qd, u, dt)?;
         }
@@ -190,7 +195,9 @@ impl Step<'_> {
     }
 
     /// Every active field: its local dynamics learn `u → ẍ`, its controller the hindsight sample
-    /// with cost `r`, and the M-steps run when due (counted).
+    /// with cost `r`, and the M-steps run when due (counted). With `adaptation.enabled`, the
+    /// fields first predict `ẍ` (every `check_every` steps) for the re-adaptation's level, and
+    /// forget and learn at its strength (`adapt.rs`).
     fn update_locals(&mut self, cur: &Measurement, r: f64) -> Result<()> {
         let (q, qd, u) = (cur.q.as_slice(), cur.qd.as_slice(), cur.u.as_slice());
         let xdd = cur.xdd.as_slice();
@@ -200,22 +207,57 @@ impl Step<'_> {
         let now = self.stats.samples;
         let dyn_now = now.is_multiple_of(self.cfg.dynamics.learn_every as u64);
         let update_every = self.cfg.controllers.update_every;
-        let solve_every = self.cfg.dynamics.solve_every as u64;
+        let ad = &self.cfg.adaptation;
+        let check = ad.enabled && now.is_multiple_of(ad.check_every as u64);
+        let adapting = ad.enabled && self.adapt.strength > 0.0;
+        let pace = Pace {
+            solve_every: self.cfg.dynamics.solve_every as u64,
+            solve_always: adapting,
+            trust_scale: if adapting {
+                self.adapt.trust_scale(ad)
+            } else {
+                1.0
+            },
+        };
+        let floor = ad.residual_floor * ad.residual_floor;
+        let (mut se, mut sv) = (0.0, 0.0);
         for a in &ws.acts {
             let Some(local) = self.models.locals.map.get_mut(&a.id) else {
                 continue;
             };
             local.last_active = now;
-            if dyn_now {
+            if dyn_now || check {
                 f.dynamics_local(&mut ws.phi_d, q, u, &local.center);
+            }
+            if check && local.dynamics_updates > 0 {
+                local.dynamics.mean_into(&ws.phi_d, &mut ws.y)?;
+                let e: f64 = xdd.iter().zip(&ws.y).map(|(x, y)| (x - y).powi(2)).sum();
+                let v = local.dynamics.mean_sq_residual().max(floor);
+                se += a.w * e;
+                sv += a.w * v * self.m as f64;
+            }
+            if adapting {
+                let (fd, fc) = self.adapt.decay(ad, a.w);
+                local.dynamics.decay(fd);
+                local.rwr.decay(fc);
+            }
+            if dyn_now {
                 local.dynamics.observe(&ws.phi_d, xdd, 0.0, a.w)?;
             }
             f.controller_local(&mut ws.phi, q, &local.center);
-            match local.observe(&ws.phi, &ws.target, r, a.w, update_every, solve_every)? {
+            let r = if adapting { self.adapt.cost(r) } else { r };
+            match local.observe(&ws.phi, &ws.target, r, a.w, update_every, pace)? {
                 Some(MStep::Done) => self.stats.m_steps += 1,
                 Some(MStep::Failed) => self.stats.failed_m_steps += 1,
                 None => {}
             }
+        }
+        if adapting {
+            self.adapt.adapting_steps += 1;
+        }
+        if check {
+            let dt_check = ad.check_every as f64 * self.dt;
+            self.adapt.observe(ad, se, sv, dt_check);
         }
         Ok(())
     }

@@ -12,7 +12,9 @@
 //! | `cost.rs` | the cost and the hindsight shrinkage |
 //! | `null_space.rs` | the null space of `Â` |
 //! | `models.rs` | the models made after the warm-up |
+//! | `adapt.rs` | re-adaptation when the local dynamics stop predicting |
 
+mod adapt;
 mod command;
 mod cost;
 mod exploration;
@@ -27,6 +29,7 @@ mod null_space;
 mod state;
 mod stats;
 
+pub use adapt::AdaptationSignal;
 pub use command::{CommandSource, EXTRAPOLATION_CUTOFF};
 pub(crate) use features::Features;
 pub use guards::RateLimiter;

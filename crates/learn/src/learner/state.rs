@@ -3,7 +3,7 @@
 
 use super::exploration::Noise;
 use super::stats::Scratch;
-use super::{Features, LearnerStats, Models, RateLimiter};
+use super::{AdaptationSignal, Features, LearnerStats, Models, RateLimiter};
 use crate::config::LearnerConfig;
 use crate::error::{LearnError, Result};
 use crate::forward::ForwardModel;
@@ -52,6 +52,8 @@ pub struct Learner {
     /// from one control period to the next (reset by [`Learner::start_episode`]).
     pub(crate) noise: Noise,
     pub(crate) rate: RateLimiter,
+    /// The re-adaptation's running level (not saved; see [`Learner::reset_adaptation`]).
+    pub(crate) adapt: AdaptationSignal,
 }
 
 impl Learner {
@@ -89,7 +91,29 @@ impl Learner {
             stats: LearnerStats::default(),
             gravity_frozen: false,
             ws,
+            adapt: AdaptationSignal::default(),
         })
+    }
+
+    /// The re-adaptation's state (`adaptation.enabled`; all 0 while it is off).
+    pub fn adaptation(&self) -> AdaptationSignal {
+        self.adapt
+    }
+
+    /// Starts the re-adaptation's running level afresh (it is not saved with the learner, so a
+    /// run that continues a saved or an in-memory learner calls this to behave the same).
+    pub fn reset_adaptation(&mut self) {
+        self.adapt = AdaptationSignal::default();
+    }
+
+    /// Sets the re-adaptation settings (e.g. on a loaded controller).
+    ///
+    /// # Errors
+    /// A setting out of range; nothing is changed.
+    pub fn set_adaptation(&mut self, cfg: crate::config::AdaptationConfig) -> Result<()> {
+        cfg.validate()?;
+        self.cfg.adaptation = cfg;
+        Ok(())
     }
 
     /// Starts a new sequence of commands: the command last sent to the robot (`None`: unknown,

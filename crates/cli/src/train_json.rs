@@ -1,0 +1,49 @@
+//! The JSON of a training run (`osrl train --json`, `osrl adapt --json`): the final
+//! evaluation's metrics, the run's numbers, the learning curve; shared by both commands.
+
+use anyhow::{Context, Result};
+use osrl_experiments::stats::{curve_points, EvalSummary};
+use osrl_learn::train::TrainSummary;
+use serde_json::{json, Value};
+
+/// Above this share of rejected samples a training run warns.
+pub const MAX_REJECTED_SHARE: f64 = 0.01;
+
+/// Samples the learner rejected as absurd, and their share of all it saw (0 without any).
+pub fn rejected(s: &TrainSummary) -> (u64, f64) {
+    let (r, n) = (s.stats.rejected, s.stats.samples + s.stats.rejected);
+    (r, if n == 0 { 0.0 } else { r as f64 / n as f64 })
+}
+
+/// The JSON of a training run: the final evaluation's metrics, the run's numbers, the curve.
+pub fn summary_json(s: &TrainSummary, final_eval: &EvalSummary, robot: &str) -> Result<Value> {
+    let mut j = serde_json::to_value(final_eval)?;
+    let o = j
+        .as_object_mut()
+        .context("an evaluation is a JSON object")?;
+    let extra = json!({
+        "robot": robot,
+        "n_local_models": s.n_local_models,
+        "sim_training_minutes": s.sim_training_minutes,
+        "wall_seconds": s.wall_seconds,
+        "realtime_factor": s.realtime_factor,
+        "max_command_step": s.max_command_step,
+        "max_torque_rate": s.max_torque_rate,
+        "rate_limited": s.rate_limited(),
+        "clipped_on_policy": s.clipped_on_policy,
+        "command_step_curve": s.step_curve,
+        "minutes_to_1mm": s.minutes_to(|e| e.tracking_rms_mm <= 1.0),
+        "minutes_to_nmse_0.05": s.minutes_to(|e| e.command_nmse <= 0.05),
+        "episodes": s.episodes,
+        "aborted_episodes": s.aborted_episodes,
+        "braked_episodes": s.braked_episodes,
+        "counters": s.stats,
+        "rejected_samples": rejected(s).0,
+        "rejected_share": rejected(s).1,
+        "learning_curve": curve_points(&s.learning_curve),
+    });
+    for (k, v) in extra.as_object().into_iter().flatten() {
+        o.insert(k.clone(), v.clone());
+    }
+    Ok(j)
+}

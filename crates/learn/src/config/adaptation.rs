@@ -1,0 +1,115 @@
+//! Settings of the re-adaptation to a changed robot (`docs/learner.md`, "Re-adaptation"): how
+//! the learner notices that its local dynamics no longer predict the measured accelerations, and
+//! how much faster it forgets and learns while they do.
+
+use crate::error::{LearnError, Result};
+use serde::{Deserialize, Serialize};
+
+/// Re-adaptation to a changed robot (a payload, other masses, other friction).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct AdaptationConfig {
+    /// Whether the learner watches its prediction error and re-adapts. Default false: the
+    /// training runs of E1–E7 stay as they were; `osrl adapt` and `osrl train --change` switch it
+    /// on.
+    pub enabled: bool,
+    /// Check the local dynamics' prediction error at every this many learning steps (≥ 1).
+    /// Default 4: the check costs about one `θᵀGθ` per active field.
+    pub check_every: usize,
+    /// Time constant of the running level of the error ratio (s of learning, > 0). Default 0.5:
+    /// a few path segments, so one bad sample does not trigger it and a change shows within a
+    /// second.
+    pub time_constant: f64,
+    /// The level (the measured `‖ẍ − Θᵀφ_d‖²` over the fields' own mean squared residual) at
+    /// which re-adaptation starts (> 1). Default 4: on an unchanged robot the level stays near
+    /// 1 (`docs/decisions.md`, D-adapt).
+    pub on_ratio: f64,
+    /// The level at which re-adaptation is at full strength (> `on_ratio`). Default 16.
+    pub full_ratio: f64,
+    /// Floor on a field's mean squared residual (m/s² RMS, > 0), so a field fitted to noise-free
+    /// data does not make every error look large. Default 0.02.
+    pub residual_floor: f64,
+    /// Forgetting factor per sample of the local dynamics at full strength and activation 1, in
+    /// (0, 1]. Default 0.995: a memory of about 200 samples (0.4 s at 500 Hz).
+    pub dynamics_forgetting: f64,
+    /// Forgetting factor per sample of the local controllers' statistics at full strength and
+    /// activation 1, in (0, 1]. Default 0.999: about 1000 samples, enough to keep the
+    /// controllers' confidence.
+    pub controller_forgetting: f64,
+    /// After the level falls back, the strength falls by at most 1 per this many seconds of
+    /// learning (> 0): the re-adaptation settles back gradually instead of stopping as soon as
+    /// the fields' residuals have absorbed the new data. Default 20.
+    pub release_seconds: f64,
+    /// Whether the static gravity model stops learning while re-adapting. Default false: on
+    /// planar3 with a 0.5 kg payload, pausing it left the tracking at 57 mm after 3 minutes
+    /// instead of 33 mm (`docs/decisions.md`, D-adapt).
+    pub pause_static_gravity: bool,
+    /// Factor on the RWR trust region at full strength (≥ 1). Default 4: the controllers may move
+    /// four times as far per M-step while they re-adapt.
+    pub trust_scale: f64,
+}
+
+impl Default for AdaptationConfig {
+    fn default() -> Self {
+        Self {
+            enabled: false,
+            check_every: 4,
+            time_constant: 0.5,
+            on_ratio: 4.0,
+            full_ratio: 16.0,
+            residual_floor: 0.02,
+            dynamics_forgetting: 0.995,
+            controller_forgetting: 0.999,
+            release_seconds: 20.0,
+            pause_static_gravity: false,
+            trust_scale: 4.0,
+        }
+    }
+}
+
+impl AdaptationConfig {
+    /// Whether every field is the default (the config then serialises without it).
+    pub fn is_default(&self) -> bool {
+        *self == Self::default()
+    }
+
+    /// Checks every field's range.
+    ///
+    /// # Errors
+    /// [`LearnError::InvalidConfig`] naming the first field out of range.
+    pub fn validate(&self) -> Result<()> {
+        let unit = |x: f64| x > 0.0 && x <= 1.0;
+        let checks = [
+            ("check_every", self.check_every >= 1),
+            (
+                "time_constant",
+                self.time_constant > 0.0 && self.time_constant.is_finite(),
+            ),
+            ("on_ratio", self.on_ratio > 1.0 && self.on_ratio.is_finite()),
+            (
+                "full_ratio",
+                self.full_ratio > self.on_ratio && self.full_ratio.is_finite(),
+            ),
+            (
+                "residual_floor",
+                self.residual_floor > 0.0 && self.residual_floor.is_finite(),
+            ),
+            (
+                "release_seconds",
+                self.release_seconds > 0.0 && self.release_seconds.is_finite(),
+            ),
+            ("dynamics_forgetting", unit(self.dynamics_forgetting)),
+            ("controller_forgetting", unit(self.controller_forgetting)),
+            (
+                "trust_scale",
+                self.trust_scale >= 1.0 && self.trust_scale.is_finite(),
+            ),
+        ];
+        match checks.iter().find(|(_, ok)| !ok) {
+            Some((what, _)) => Err(LearnError::InvalidConfig(format!(
+                "adaptation.{what} is out of range: {self:?}"
+            ))),
+            None => Ok(()),
+        }
+    }
+}

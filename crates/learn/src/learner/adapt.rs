@@ -1,0 +1,74 @@
+//! Re-adaptation to a changed robot (`docs/learner.md`, "Re-adaptation"): every
+//! `adaptation.check_every` learning steps, each active field's local dynamics predict the
+//! measured `ẍ` before they learn it; the activation-weighted squared error over the fields' own
+//! mean squared residual is the error ratio, whose running level drives the strength `a ∈ [0, 1]`.
+//! While `a > 0`, each active field forgets its dynamics and its controller's statistics faster
+//! (factor `λ^(a·w)` per sample, `w` its activation), re-solves its dynamics at every M-step,
+//! weights new samples by a cost shrunk by `1 − a` and may move its controller further per
+//! M-step (trust region × `1 + a (s − 1)`). When the level falls back, `a` is released over
+//! `release_seconds`. Fields the arm does not visit forget nothing.
+
+use crate::config::AdaptationConfig;
+use serde::Serialize;
+
+/// The re-adaptation's state: the running level of the error ratio and the strength it gives.
+/// It is not saved with the learner: [`crate::Learner::reset_adaptation`] starts it afresh (the
+/// fields' own residuals, which are saved, are its reference).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct AdaptationSignal {
+    /// Running level of the error ratio (about 1 where the fields predict as well as they fit).
+    pub level: f64,
+    /// Strength of the re-adaptation in [0, 1]: 0 up to `on_ratio`, 1 from `full_ratio`.
+    pub strength: f64,
+    /// Largest level since the last reset.
+    pub peak_level: f64,
+    /// Checks of the prediction error since the last reset.
+    pub checks: u64,
+    /// Learning steps taken with a strength above 0 since the last reset.
+    pub adapting_steps: u64,
+}
+
+/// The error ratio of one check is capped at this, so one wild sample moves the level by a
+/// bounded amount.
+const MAX_RATIO: f64 = 100.0;
+
+impl AdaptationSignal {
+    /// Folds one check's error ratio `se / sv` into the level (`dt_check`: seconds of learning
+    /// since the last check) and updates the strength.
+    pub(crate) fn observe(&mut self, cfg: &AdaptationConfig, se: f64, sv: f64, dt_check: f64) {
+        if !(sv > 0.0) || !se.is_finite() {
+            return;
+        }
+        let ratio = (se / sv).min(MAX_RATIO);
+        let alpha = (dt_check / cfg.time_constant).min(1.0);
+        self.level += alpha * (ratio - self.level);
+        self.peak_level = self.peak_level.max(self.level);
+        self.checks += 1;
+        let target =
+            ((self.level - cfg.on_ratio) / (cfg.full_ratio - cfg.on_ratio)).clamp(0.0, 1.0);
+        let release = dt_check / cfg.release_seconds;
+        self.strength = target.max(self.strength - release).max(0.0);
+    }
+
+    /// The extra forgetting factors `(dynamics, controller)` for a field with activation `w`.
+    pub(crate) fn decay(&self, cfg: &AdaptationConfig, w: f64) -> (f64, f64) {
+        let e = self.strength * w;
+        (
+            cfg.dynamics_forgetting.powf(e),
+            cfg.controller_forgetting.powf(e),
+        )
+    }
+
+    /// The cost a sample of cost `r` is weighted with: `(1 − a) r`. A change of the robot
+    /// changes the costs of the new samples; with `τ` fitted to the old, small costs, RWR would
+    /// give them no weight, so while re-adapting the samples count by their activation (the
+    /// hindsight target is already the minimum-norm one).
+    pub(crate) fn cost(&self, r: f64) -> f64 {
+        r * (1.0 - self.strength)
+    }
+
+    /// The factor on the RWR trust region.
+    pub(crate) fn trust_scale(&self, cfg: &AdaptationConfig) -> f64 {
+        1.0 + self.strength * (cfg.trust_scale - 1.0)
+    }
+}
