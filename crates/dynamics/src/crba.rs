@@ -37,9 +37,9 @@ unsafe fn crba_pass_avx2(model: &Model, data: &mut Data) {
 /// CRBA on the joint poses already in `data`.
 ///
 /// Column `i` of `M` is `F_i = I^c_i S_i` walked towards the base, `M_ij = S_jᵀ ᶦX*_j F_i`
-/// (Featherstone's algorithm 6.2). The walk goes level by level, as Pinocchio's does: at
-/// joint `j` every column `i > j` is carried one frame down by the same transform, which stays
-/// in registers.
+/// (Featherstone's algorithm 6.2), one column at a time so that `F_i` stays in registers (a
+/// walk level by level, as Pinocchio's, stores and reloads every column at each level and was
+/// 5 % slower).
 #[inline(always)]
 fn crba_pass_body(model: &Model, data: &mut Data) {
     let n = model.nq();
@@ -53,17 +53,14 @@ fn crba_pass_body(model: &Model, data: &mut Data) {
         let child = data.ic[i].to_parent(&data.joint_pose[i]);
         data.ic[i - 1] = links[i - 1].inertia.add(&child);
     }
-    let (f, mass) = (&mut data.fc[..n], &mut data.mass);
+    let mass = &mut data.mass;
     for i in 0..n {
-        f[i] = data.ic[i].mul_motion(&links[i].motion(1.0));
-        mass[(i, i)] = links[i].project(&f[i]);
-    }
-    // Level j: the columns below joint j + 1 move into frame j, M_ij = S_jᵀ F_i.
-    for j in (0..n - 1).rev() {
-        let x = data.joint_pose[j + 1];
-        for i in j + 1..n {
-            f[i] = x.force_to_parent(&f[i]);
-            let m = links[j].project(&f[i]);
+        // F = I^c_i S_i, then walk it to the base in registers: M_ij = S_jᵀ F.
+        let mut f = data.ic[i].mul_motion(&links[i].motion(1.0));
+        mass[(i, i)] = links[i].project(&f);
+        for j in (0..i).rev() {
+            f = data.joint_pose[j + 1].force_to_parent(&f);
+            let m = links[j].project(&f);
             mass[(i, j)] = m;
             mass[(j, i)] = m;
         }

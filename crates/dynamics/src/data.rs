@@ -26,8 +26,6 @@ pub struct Data {
     pub ia: Vec<ArticulatedInertia>,
     pub pa: Vec<Force>,
     pub(crate) c: Vec<Motion>,
-    /// The columns `F_i = I^c_i S_i` of CRBA on their walk to the base.
-    pub(crate) fc: Vec<Force>,
     pub(crate) u_ang: Vec<Vector3<f64>>,
     pub(crate) u_lin: Vec<Vector3<f64>>,
     pub(crate) d_inv: Vec<f64>,
@@ -68,7 +66,6 @@ impl Data {
             ia: vec![ArticulatedInertia::default(); n],
             pa: vec![Force::default(); n],
             c: vec![Motion::default(); n],
-            fc: vec![Force::default(); n],
             u_ang: vec![Vector3::zeros(); n],
             u_lin: vec![Vector3::zeros(); n],
             d_inv: vec![0.0; n],
