@@ -27,9 +27,7 @@ fn pin_python(chosen: Option<String>) -> Result<String, String> {
     if let Some(py) = chosen {
         return match imports(&py) {
             true => Ok(py),
-            false => Err(format!(
-                "OSRL_PIN_PYTHON={py} cannot import pin and cmeel"
-            )),
+            false => Err(format!("OSRL_PIN_PYTHON={py} cannot import pin and cmeel")),
         };
     }
     let venv = std::env::var_os("HOME").map(|h| PathBuf::from(h).join(VENV));
@@ -114,8 +112,17 @@ mod tests {
     #[test]
     fn keep_min_keeps_the_smaller_time_per_key() {
         let mut best = Map::new();
-        keep_min(&mut best, json!({"a": 3.0, "b": 1.0}).as_object().unwrap().clone());
-        keep_min(&mut best, json!({"a": 2.0, "b": 5.0, "c": 7.0}).as_object().unwrap().clone());
+        keep_min(
+            &mut best,
+            json!({"a": 3.0, "b": 1.0}).as_object().unwrap().clone(),
+        );
+        keep_min(
+            &mut best,
+            json!({"a": 2.0, "b": 5.0, "c": 7.0})
+                .as_object()
+                .unwrap()
+                .clone(),
+        );
         assert_eq!(Value::Object(best), json!({"a": 2.0, "b": 1.0, "c": 7.0}));
     }
 
