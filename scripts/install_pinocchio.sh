@@ -6,4 +6,4 @@ set -euo pipefail
 venv=${1:-$HOME/.cache/osrl-pin-venv}
 python3 -m venv "$venv"
 "$venv/bin/pip" install --quiet pin==4.1.0 cmeel-eigen cmeel-urdfdom-headers
-"$venv/bin/python" -c "import pin; print('pin', pin.__version__, 'in $venv')"
+"$venv/bin/python" -c "import pinocchio; print('pin', pinocchio.__version__, 'in $venv')"

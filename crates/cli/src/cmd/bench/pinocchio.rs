@@ -19,7 +19,7 @@ const VENV: &str = ".cache/osrl-pin-venv/bin/python";
 fn pin_python(chosen: Option<String>) -> Result<String, String> {
     let imports = |py: &str| {
         Command::new(py)
-            .args(["-c", "import pin, cmeel"])
+            .args(["-c", "import pinocchio, cmeel"])
             .output()
             .map(|o| o.status.success())
             .unwrap_or(false)
@@ -27,7 +27,9 @@ fn pin_python(chosen: Option<String>) -> Result<String, String> {
     if let Some(py) = chosen {
         return match imports(&py) {
             true => Ok(py),
-            false => Err(format!("OSRL_PIN_PYTHON={py} cannot import pin and cmeel")),
+            false => Err(format!(
+                "OSRL_PIN_PYTHON={py} cannot import pinocchio and cmeel"
+            )),
         };
     }
     let venv = std::env::var_os("HOME").map(|h| PathBuf::from(h).join(VENV));
@@ -39,7 +41,7 @@ fn pin_python(chosen: Option<String>) -> Result<String, String> {
         .ok_or_else(|| {
             "the pin wheel is not installed (neither python3 nor ~/".to_string()
                 + VENV
-                + " imports pin; scripts/install_pinocchio.sh installs it)"
+                + " imports pinocchio (the pin wheel's module); scripts/install_pinocchio.sh installs it)"
         })
 }
 
