@@ -39,7 +39,8 @@ def summary(out: dict, source: str) -> str:
             parts.append(f"{key} skipped ({v['skipped']})")
             continue
         parts.append(
-            f"{key} update {ratio(v.get('ratio_update_us_c_o2'))} / predict "
+            f"{key} ({v.get('seeds', '?')} seeds × {v.get('epochs', '?')} epochs) update "
+            f"{ratio(v.get('ratio_update_us_c_o2'))} / predict "
             f"{ratio(v.get('ratio_predict_us_c_o2'))} the C library at -O2 "
             f"({ratio(v.get('ratio_update_us_c_o3_native'))} / "
             f"{ratio(v.get('ratio_predict_us_c_o3_native'))} at -O3 native)"
@@ -60,7 +61,8 @@ def summary(out: dict, source: str) -> str:
         f"{m.get('date', '?')}, {m.get('cpu', '?')}, {m.get('cores', '?')} cores, load average "
         f"{m.get('loadavg', '?')} at the start; ratios measured in one run, C/Pinocchio and the crate "
         f"interleaved): LWPR (C time / crate time) {lwpr}. Dynamics: {dyn}. Tables: "
-        f"`crates/lwpr/README.md`, \"Against the reference library\"."
+        f"`crates/lwpr/README.md`, \"Against the reference library\". Issue 31's targets: LWPR ≥ 5× "
+        f"(-O2) and ≥ 3× (-O3 native) on the crosses, SARCOS update ≥ 20×; dynamics ≥ 1.5×."
     )
 
 
