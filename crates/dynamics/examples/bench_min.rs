@@ -1,5 +1,6 @@
-//! Time per call with the method of `scripts/bench_pinocchio.cpp` (best of 7 repetitions of
-//! 200,000 calls, same states), so the two can be compared as ratios on a loaded machine:
+//! Time per call with the method of `scripts/bench_pinocchio.cpp` (best of 300 repetitions of
+//! 2,000 calls, about a millisecond each, shorter than a scheduler's time slice so that on a
+//! loaded machine the best is a run without preemption; same states), so the two can be compared as ratios on a loaded machine:
 //! `cargo run --release -p osrl-dynamics --example bench_min` prints one JSON object (ns per call).
 
 use osrl_dynamics::{aba, crba, jacobian, rnea, robots};
@@ -8,8 +9,8 @@ use std::time::Instant;
 
 fn ns_per_call(mut f: impl FnMut()) -> f64 {
     let mut best = f64::INFINITY;
-    for _ in 0..7 {
-        let n = 200_000;
+    for _ in 0..300 {
+        let n = 2_000;
         let t0 = Instant::now();
         for _ in 0..n {
             f();

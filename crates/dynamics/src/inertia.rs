@@ -70,19 +70,28 @@ impl Inertia {
         }
     }
     /// This inertia (given in a child frame) expressed in the parent frame of `pose`.
-    #[inline]
+    ///
+    /// `I_p = R I Rᵀ − [Rh]×[p]× − [p]×[Rh]× − m [p]×[p]×`, expanded with
+    /// `[a]×[b]× = b aᵀ − (a·b) 1`; the result is symmetric, so only its upper triangle is
+    /// computed and mirrored (CRBA's main cost).
+    #[inline(always)]
     pub fn to_parent(&self, pose: &Pose) -> Inertia {
         let r = &pose.rot;
         let p = &pose.trans;
         let hr = r * self.h;
-        let ir = r * self.inertia * r.transpose();
-        // I_p = R I Rᵀ − [Rh]×[p]× − [p]×[Rh]× − m [p]×[p]×, expanded with [a]×[b]× = b aᵀ − (a·b) 1.
-        let cross = p * hr.transpose() + hr * p.transpose();
+        let ri = r * self.inertia;
         let diag = 2.0 * hr.dot(p) + self.mass * p.norm_squared();
+        let entry = |a: usize, b: usize| {
+            let rir = ri[(a, 0)] * r[(b, 0)] + ri[(a, 1)] * r[(b, 1)] + ri[(a, 2)] * r[(b, 2)];
+            let cross = p[a] * hr[b] + hr[a] * p[b];
+            rir - cross - p[a] * p[b] * self.mass
+        };
+        let (xx, yy, zz) = (entry(0, 0) + diag, entry(1, 1) + diag, entry(2, 2) + diag);
+        let (xy, xz, yz) = (entry(0, 1), entry(0, 2), entry(1, 2));
         Inertia {
             mass: self.mass,
             h: hr + p * self.mass,
-            inertia: ir - cross - p * p.transpose() * self.mass + Matrix3::identity() * diag,
+            inertia: Matrix3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz),
         }
     }
     /// Sum of two inertias in the same frame.

@@ -159,11 +159,23 @@ pub fn rotate_about(o: &Matrix3<f64>, axis: &Vector3<f64>, q: f64) -> Matrix3<f6
     let s = sign * s;
     // Rodrigues' diagonal entry of the turning axes, as the general formula evaluates it.
     let cc = 1.0 + -(1.0 - c);
-    let (i, j) = ((a + 1) % 3, (a + 2) % 3);
-    let (ci, cj) = (o.column(i).into_owned(), o.column(j).into_owned());
+    // One copy per axis, so that the column indices are constants.
+    match a {
+        0 => turn_columns::<1, 2>(o, s, cc),
+        1 => turn_columns::<2, 0>(o, s, cc),
+        _ => turn_columns::<0, 1>(o, s, cc),
+    }
+}
+
+/// `o` with columns `I` and `J` turned: `(c_i cc + c_j s, −c_i s + c_j cc)`.
+#[inline(always)]
+fn turn_columns<const I: usize, const J: usize>(o: &Matrix3<f64>, s: f64, cc: f64) -> Matrix3<f64> {
     let mut r = *o;
-    r.set_column(i, &(ci * cc + cj * s));
-    r.set_column(j, &(ci * -s + cj * cc));
+    for k in 0..3 {
+        let (ci, cj) = (o[(k, I)], o[(k, J)]);
+        r[(k, I)] = ci * cc + cj * s;
+        r[(k, J)] = ci * -s + cj * cc;
+    }
     r
 }
 
