@@ -96,7 +96,8 @@ impl Setup {
     ) -> Result<Self> {
         let profiled = profile::resolve(&model, given)?;
         let trajectory = profiled.trajectory(&trajectory);
-        let (model, profile) = (profiled.model, profiled.profile);
+        let embedded = profiled.as_given();
+        let (model, profile) = (embed(profiled.model, embedded)?, profiled.profile);
         let traj = trajectory.build(&model)?;
         let home = check_reachable(&model, &traj, &IkOptions::default())?.q_start;
         let learner = data_sheet(&model, LearnerConfig::default())?;
@@ -375,6 +376,18 @@ impl Setup {
         };
         Ok(SavedModel::new(info, learner)?)
     }
+}
+
+/// A URDF robot with its resolved profile as the one its file carries, so that the model saved
+/// with a trained learner resolves to the same home, gains and path without the profile it was
+/// trained with (built-in robots carry their profile in the model's data sheet already).
+fn embed(model: Model, resolved: RobotProfile) -> Result<Model> {
+    let mut spec = model.spec().clone();
+    match spec.urdf.as_mut() {
+        Some(u) if u.profile.as_ref() != Some(&resolved) => u.profile = Some(resolved),
+        _ => return Ok(model),
+    }
+    Ok(Model::new(spec)?)
 }
 
 /// `cfg` with its empty data-sheet fields filled from `model`, checked for it.
