@@ -213,8 +213,8 @@ fn train_uses_the_sim_section_and_refuses_the_sections_it_cannot_use() {
 }
 
 /// `osrl train` takes a robot profile (`[robot]` section) as `osrl simulate` does and saves it
-/// with the model: the saved robot has the given gains, and `osrl eval` and `osrl simulate
-/// --controller learned:` find the same home again from the saved model alone.
+/// with the model: the saved set-up has the given gains and home, and `osrl eval` and `osrl
+/// simulate --controller learned:` run from the saved model alone.
 #[test]
 fn train_accepts_a_robot_profile_and_saves_it_with_the_model() {
     let dir = std::env::temp_dir().join(format!("osrl-train-profile-{}", std::process::id()));
@@ -229,10 +229,11 @@ fn train_accepts_a_robot_profile_and_saves_it_with_the_model() {
         file.display()
     );
     let saved = train_with(&dir, "profiled", &toml, "0.05").unwrap();
-    assert_eq!(saved.robot().spec().kd, kd);
+    assert_eq!(saved.info().profile.kd, Some(kd.to_vec()));
     assert_eq!(saved.learner().config().nominal.kd, kd);
-    let embedded = saved.robot().spec().urdf.as_ref().unwrap().profile.clone();
-    assert_eq!(embedded.and_then(|p| p.kd), Some(kd.to_vec()));
+    let setup = osrl_experiments::Setup::from_saved(&saved).unwrap();
+    assert_eq!(setup.model().spec().kd, kd);
+    assert_eq!(setup.home(), saved.info().home);
     let m = dir.join("profiled.osrl");
     let m = m.to_str().unwrap();
     let (ok, _, err) = osrl(&["eval", "--model", m, "--seconds", "8"]);

@@ -28,6 +28,8 @@ use osrl_learn::{Learner, LearnerConfig, ModelInfo, SavedModel, CONTROL_PERIOD_R
 pub struct Setup {
     robot: String,
     model: Model,
+    /// The profile given (saved with a trained model, which resolves it again).
+    given: RobotProfile,
     profile: ResolvedProfile,
     trajectory: TrajectoryConfig,
     traj: Trajectory,
@@ -104,6 +106,10 @@ impl Setup {
         Ok(Self {
             robot,
             model,
+            given: RobotProfile {
+                name: None,
+                ..given.clone()
+            },
             profile,
             trajectory,
             traj,
@@ -115,8 +121,8 @@ impl Setup {
         })
     }
 
-    /// The set-up a saved model was trained in: its robot, trajectory, task gains, control
-    /// period and seed (the home posture is found on the trajectory again, as for training,
+    /// The set-up a saved model was trained in: its robot (with the profile it was given),
+    /// trajectory, task gains, control period and seed (the home posture is found on the trajectory again, as for training,
     /// and must be the saved one).
     ///
     /// # Errors
@@ -133,9 +139,10 @@ impl Setup {
             seed: info.seed,
             ..TrainConfig::default()
         };
-        let setup = Self::from_model(
+        let setup = Self::from_model_with(
             info.robot.clone(),
             saved.robot().clone(),
+            &info.profile,
             info.trajectory.clone(),
         )?;
         let apart = setup
@@ -373,6 +380,7 @@ impl Setup {
             control_period: self.sim.control_period,
             sim_training_minutes: summary.sim_training_minutes,
             seed: self.train.seed,
+            profile: self.given.clone(),
         };
         Ok(SavedModel::new(info, learner)?)
     }

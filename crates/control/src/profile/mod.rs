@@ -24,7 +24,7 @@
 //!   ([`placement`]), half-width and half-height [`DEFAULT_SCALE`] × the reach, halved up to
 //!   twice until it is reachable by IK over a whole cycle inside the joint limits and within
 //!   [`TORQUE_SHARE`] of the torque limits, and until eq. 7 (`N = I`, default task gains, true
-//!   model, 500 Hz) tracks it for two periods within [`TRACKING_BOUND_MM`] RMS without a
+//!   model, 500 Hz) tracks it for three periods within [`TRACKING_BOUND_MM`] RMS without a
 //!   saturated torque. An arm for which no candidate works is refused
 //!   with the last reason.
 

@@ -1,5 +1,6 @@
 //! The return home between on-policy episodes: a minimum-jerk PD move home, then a hold there
-//! with integral action until the arm is at rest at home (or the hold's time is up).
+//! for 1 s, then with integral action until the arm is at rest at home (or the hold's time is
+//! up).
 //!
 //! The joint gains of an imported arm are `K_P = m_i ω²` with `m_i` the smallest inertia joint
 //! `i` can move (`osrl_control::profile`): a heavy mode of several joints (the Panda's shoulder
@@ -46,9 +47,10 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
         self.hold_home(limit)
     }
 
-    /// Holds home under `ĝ + s (K_P e + K_I ∫e + K_D ė)` with `K_I = K_P / home_integral_seconds`
-    /// (the integral's torque bounded by half the torque limit), until settled after at least
-    /// 1 s, or `home_hold_seconds`, or the step count reaches `limit`.
+    /// Holds home under `ĝ + s (K_P e + K_D ė)` for 1 s; if the arm has not settled then, under
+    /// `ĝ + s (K_P e + K_I ∫e + K_D ė)` with `K_I = K_P / home_integral_seconds` (the integral's
+    /// torque bounded by half the torque limit) until it has, or `home_hold_seconds` have passed,
+    /// or the step count reaches `limit`.
     fn hold_home(&mut self, limit: u64) -> Result<bool> {
         let n = self.home.len();
         let (min_k, max_k) = (
@@ -68,12 +70,15 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
             pd_command(self.learner, &prev, &self.home, &zero, scale, &mut self.u)?;
             let cfg = self.learner.config();
             let (kp, lim) = (&cfg.nominal.kp, &cfg.guards.torque_limits);
-            for i in 0..n {
-                self.integral[i] += (self.home[i] - prev.q[i]) * self.dt;
-                if ti > 0.0 {
-                    let bound = 0.5 * lim[i] / (scale * kp[i] / ti);
+            // The first second is the plain PD hold (arms that settle in it are held as
+            // without integral action); the integral acts only on an arm that did not.
+            if k >= min_k && ti > 0.0 {
+                for i in 0..n {
+                    self.integral[i] += (self.home[i] - prev.q[i]) * self.dt;
+                    let ki = scale * kp[i] / ti;
+                    let bound = 0.5 * lim[i] / ki;
                     self.integral[i] = self.integral[i].clamp(-bound, bound);
-                    self.u[i] += scale * kp[i] / ti * self.integral[i];
+                    self.u[i] += ki * self.integral[i];
                 }
             }
             self.step()?;
