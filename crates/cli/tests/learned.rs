@@ -239,7 +239,7 @@ fn train_accepts_a_robot_profile_and_saves_it_with_the_model() {
     let (ok, _, err) = osrl(&["eval", "--model", m, "--seconds", "8"]);
     assert!(ok, "{err}");
     let learned = format!("learned:{m}");
-    let (ok, _, err) = osrl(&["simulate", "--controller", &learned, "--seconds", "0.2"]);
+    let (ok, _, err) = osrl(&["simulate", "--controller", &learned, "--seconds", "8"]);
     assert!(ok, "{err}");
     // A profile given with a learned controller is refused: the model carries its own.
     let (ok, _, err) = osrl(&[

@@ -5,8 +5,8 @@
 //! stdout line has the metrics of issue 6 and the learning curve.
 //!
 //! The robot's profile (`[robot]` section, `--profile F`, `--tip`, `--lock`, `--unlock`) is
-//! resolved as for `osrl simulate` and saved with the model (a URDF robot carries the resolved
-//! values as its embedded profile), so the saved model finds the same home again.
+//! resolved as for `osrl simulate` and saved with the model (`ModelInfo::profile`), so the saved
+//! model finds the same robot and home again.
 //!
 //! The config file's sections `robot`, `[trajectory]`, `[sim]`, `[learner]` and `[train]` set
 //! the run (the `[sim]` control period is the learner's and is saved with it); `[controller]`,
