@@ -40,6 +40,7 @@ pub fn summary_json(s: &TrainSummary, final_eval: &EvalSummary, robot: &str) -> 
         "counters": s.stats,
         "rejected_samples": rejected(s).0,
         "rejected_share": rejected(s).1,
+        "unsettled_starts": s.unsettled_starts,
         "learning_curve": curve_points(&s.learning_curve),
     });
     for (k, v) in extra.as_object().into_iter().flatten() {

@@ -211,3 +211,46 @@ fn train_uses_the_sim_section_and_refuses_the_sections_it_cannot_use() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// `osrl train` takes a robot profile (`[robot]` section) as `osrl simulate` does and saves it
+/// with the model: the saved set-up has the given gains and home, and `osrl eval` and `osrl
+/// simulate --controller learned:` run from the saved model alone.
+#[test]
+fn train_accepts_a_robot_profile_and_saves_it_with_the_model() {
+    let dir = std::env::temp_dir().join(format!("osrl-train-profile-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (ok, urdf, err) = osrl(&["robot", "--robot", "planar3", "--urdf"]);
+    assert!(ok, "{err}");
+    let file = dir.join("p3.urdf");
+    std::fs::write(&file, urdf).unwrap();
+    let kd = [5.0, 4.0, 2.0];
+    let toml = format!(
+        "[robot]\nname = \"{}\"\nkd = [5.0, 4.0, 2.0]\n",
+        file.display()
+    );
+    let saved = train_with(&dir, "profiled", &toml, "0.05").unwrap();
+    assert_eq!(saved.info().profile.kd, Some(kd.to_vec()));
+    assert_eq!(saved.learner().config().nominal.kd, kd);
+    let setup = osrl_experiments::Setup::from_saved(&saved).unwrap();
+    assert_eq!(setup.model().spec().kd, kd);
+    assert_eq!(setup.home(), saved.info().home);
+    let m = dir.join("profiled.osrl");
+    let m = m.to_str().unwrap();
+    let (ok, _, err) = osrl(&["eval", "--model", m, "--seconds", "8"]);
+    assert!(ok, "{err}");
+    let learned = format!("learned:{m}");
+    let (ok, _, err) = osrl(&["simulate", "--controller", &learned, "--seconds", "8"]);
+    assert!(ok, "{err}");
+    // A profile given with a learned controller is refused: the model carries its own.
+    let (ok, _, err) = osrl(&[
+        "simulate",
+        "--controller",
+        &learned,
+        "--tip",
+        "ee",
+        "--seconds",
+        "0.2",
+    ]);
+    assert!(!ok && err.contains("learned controller"), "{err}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -55,10 +55,18 @@ fn defaults_of_the_panda_and_the_ur5_are_inside_the_limits_reachable_and_scaled(
         assert_eq!(m.spec().q_start, r.home);
         assert_eq!(m.spec().kp, r.kp);
         assert!(r.kp.iter().chain(&r.kd).all(|&g| g > 0.0), "{file}: {r:?}");
-        // kd = 2 ζ ω m_i and kp = ω² m_i: kd²/kp = 4 ζ² m_i, both from one inertia.
-        for (kp, kd) in r.kp.iter().zip(&r.kd) {
-            let m_i = kp / r.null_space_frequency.powi(2);
-            assert!((kd - 2.0 * r.null_space_damping * r.null_space_frequency * m_i).abs() < 1e-9);
+        // kp = ω² m_i and kd = 2 ζ ω √(m_i M_ii): m_i = 1/(M⁻¹)_ii, M_ii from the mass matrix.
+        let mm = osrl_dynamics::crba(m, &mut m.data(), &r.home)
+            .unwrap()
+            .clone_owned();
+        let inv = mm.clone().cholesky().unwrap().inverse();
+        let (w, z) = (r.null_space_frequency, r.null_space_damping);
+        for (i, (kp, kd)) in r.kp.iter().zip(&r.kd).enumerate() {
+            let m_i = 1.0 / inv[(i, i)];
+            assert!((kp - w * w * m_i).abs() < 1e-9 * kp, "{file}: joint {i}");
+            let want = 2.0 * z * w * (m_i * mm[(i, i)]).sqrt();
+            assert!((kd - want).abs() < 1e-9 * want, "{file}: joint {i}");
+            assert!(*kd >= 2.0 * z * w * m_i, "{file}: joint {i}");
         }
         assert!(
             r.path.a > 0.02 && r.path.a <= 0.1 * r.reach + 1e-12,

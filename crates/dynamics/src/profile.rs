@@ -84,8 +84,9 @@ pub struct RobotProfile {
     /// other joints free), so every joint's null-space motion has the same time scale.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub kp: Option<Vec<f64>>,
-    /// Joint damping `K_D` of `u0` (N·m·s/rad or N·s/m). Default `2 ζ m_i ω` with
-    /// `ζ = null_space_damping`.
+    /// Joint damping `K_D` of `u0` (N·m·s/rad or N·s/m). Default `2 ζ ω √(m_i M_ii(home))`
+    /// with `ζ = null_space_damping`: `M_ii`, the inertia with the other joints locked, also
+    /// damps the heavy modes of several joints.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub kd: Option<Vec<f64>>,
     /// Torque limits (N·m or N): commands are clipped to ± these. Default: the URDF's `effort`

@@ -28,6 +28,8 @@ use osrl_learn::{Learner, LearnerConfig, ModelInfo, SavedModel, CONTROL_PERIOD_R
 pub struct Setup {
     robot: String,
     model: Model,
+    /// The profile given (saved with a trained model, which resolves it again).
+    given: RobotProfile,
     profile: ResolvedProfile,
     trajectory: TrajectoryConfig,
     traj: Trajectory,
@@ -96,13 +98,18 @@ impl Setup {
     ) -> Result<Self> {
         let profiled = profile::resolve(&model, given)?;
         let trajectory = profiled.trajectory(&trajectory);
-        let (model, profile) = (profiled.model, profiled.profile);
+        let embedded = profiled.as_given();
+        let (model, profile) = (embed(profiled.model, embedded)?, profiled.profile);
         let traj = trajectory.build(&model)?;
         let home = check_reachable(&model, &traj, &IkOptions::default())?.q_start;
         let learner = data_sheet(&model, LearnerConfig::default())?;
         Ok(Self {
             robot,
             model,
+            given: RobotProfile {
+                name: None,
+                ..given.clone()
+            },
             profile,
             trajectory,
             traj,
@@ -114,8 +121,8 @@ impl Setup {
         })
     }
 
-    /// The set-up a saved model was trained in: its robot, trajectory, task gains, control
-    /// period and seed (the home posture is found on the trajectory again, as for training,
+    /// The set-up a saved model was trained in: its robot (with the profile it was given),
+    /// trajectory, task gains, control period and seed (the home posture is found on the trajectory again, as for training,
     /// and must be the saved one).
     ///
     /// # Errors
@@ -132,9 +139,10 @@ impl Setup {
             seed: info.seed,
             ..TrainConfig::default()
         };
-        let setup = Self::from_model(
+        let setup = Self::from_model_with(
             info.robot.clone(),
             saved.robot().clone(),
+            &info.profile,
             info.trajectory.clone(),
         )?;
         let apart = setup
@@ -372,9 +380,22 @@ impl Setup {
             control_period: self.sim.control_period,
             sim_training_minutes: summary.sim_training_minutes,
             seed: self.train.seed,
+            profile: self.given.clone(),
         };
         Ok(SavedModel::new(info, learner)?)
     }
+}
+
+/// A URDF robot with its resolved profile as the one its file carries, so that the model saved
+/// with a trained learner resolves to the same home, gains and path without the profile it was
+/// trained with (built-in robots carry their profile in the model's data sheet already).
+fn embed(model: Model, resolved: RobotProfile) -> Result<Model> {
+    let mut spec = model.spec().clone();
+    match spec.urdf.as_mut() {
+        Some(u) if u.profile.as_ref() != Some(&resolved) => u.profile = Some(resolved),
+        _ => return Ok(model),
+    }
+    Ok(Model::new(spec)?)
 }
 
 /// `cfg` with its empty data-sheet fields filled from `model`, checked for it.

@@ -23,6 +23,7 @@
 //!     control_period: 0.002,
 //!     sim_training_minutes: 0.0,
 //!     seed: 0,
+//!     profile: Default::default(),
 //! };
 //! let saved = SavedModel::new(info, learner)?;
 //! let back = SavedModel::from_bytes(&saved.to_bytes()?)?;
@@ -40,7 +41,7 @@ use crate::error::{LearnError, Result};
 use crate::learner::Learner;
 use crate::LearnerConfig;
 use osrl_control::{TaskGains, TrajectoryConfig};
-use osrl_dynamics::{robots, Model};
+use osrl_dynamics::{robots, Model, RobotProfile};
 use serde::{Deserialize, Serialize};
 use std::ops::RangeInclusive;
 use std::path::Path;
@@ -79,6 +80,11 @@ pub struct ModelInfo {
     pub sim_training_minutes: f64,
     /// Seed of the training run.
     pub seed: u64,
+    /// The robot profile the run was given (`[robot]`, `--profile`, `--tip`, `--lock`,
+    /// `--unlock`): the robot is read with its tip and locks, and resolved with it again.
+    /// Default none (the robot's own defaults).
+    #[serde(default, skip_serializing_if = "RobotProfile::is_empty")]
+    pub profile: RobotProfile,
 }
 
 /// A learner with its [`ModelInfo`], checked against each other and against the robot.
@@ -95,12 +101,21 @@ pub struct SavedModel {
 /// [`LearnError::Robot`] for a URDF file that cannot be read or parsed, or a name that is
 /// neither.
 pub fn load_robot(spec: &str) -> Result<Model> {
+    load_robot_with(spec, &RobotProfile::default())
+}
+
+/// As [`load_robot`], a URDF file read with the tip and locks of `profile`.
+///
+/// # Errors
+/// As [`load_robot`], or a malformed lock.
+pub fn load_robot_with(spec: &str, profile: &RobotProfile) -> Result<Model> {
     if robots::BUILTIN.contains(&spec) {
         return Ok(robots::by_name(spec)?);
     }
     let path = Path::new(spec);
     if spec.ends_with(".urdf") || path.exists() {
-        return Ok(osrl_dynamics::urdf::load_urdf(path)?);
+        let opts = profile.urdf_options()?;
+        return Ok(osrl_dynamics::urdf::load_urdf_with(path, &opts)?);
     }
     Err(LearnError::Robot(
         osrl_dynamics::DynamicsError::InvalidModel(format!(
@@ -201,7 +216,7 @@ impl SavedModel {
         if info.robot.trim().is_empty() {
             return Err(field("robot", "empty"));
         }
-        let robot = load_robot(&info.robot).map_err(|e| field("robot", e))?;
+        let robot = load_robot_with(&info.robot, &info.profile).map_err(|e| field("robot", e))?;
         info.validate(&learner, &robot)?;
         if learner.config().guards.torque_limits.is_empty() {
             let tau: Vec<f64> = robot.tau_max().collect();
@@ -355,6 +370,7 @@ mod tests {
             control_period: 0.002,
             sim_training_minutes: 1.5,
             seed: 4,
+            profile: Default::default(),
         };
         SavedModel::new(info, learner).unwrap()
     }

@@ -128,8 +128,17 @@ pub fn run(a: Args) -> Result<()> {
     if let Some(dir) = &a.out {
         crate::util::check_out_dir("--out", dir, &osrl_report::runs::SIMULATE_FILES)?;
     }
-    let setup = Setup::profiled(cfg.robot.name(), &cfg.robot.0, cfg.trajectory.clone())?
-        .with_sim(cfg.sim.clone())?;
+    // A learned controller runs on the robot it was trained on, saved with it (its profile
+    // included), not on the file read again.
+    let setup = match &loaded {
+        Some(saved) if cfg.robot.0.is_empty() => Setup::from_saved(saved)?,
+        Some(_) => bail!(
+            "a robot profile ([robot] section, --profile, --tip, --lock, --unlock) has no use with \
+             a learned controller: it runs on the robot it was trained on, profile included"
+        ),
+        None => Setup::profiled(cfg.robot.name(), &cfg.robot.0, cfg.trajectory.clone())?,
+    }
+    .with_sim(cfg.sim.clone())?;
     let model = setup.model().clone();
     let (sim_model, ctrl_model) = cfg.model_error.apply(&model)?;
     let mut learned = loaded.map(SavedModel::controller).transpose()?;

@@ -4,12 +4,17 @@
 //! simulated minutes, the tracking error and the number of local models; with `--json` the last
 //! stdout line has the metrics of issue 6 and the learning curve.
 //!
+//! The robot's profile (`[robot]` section, `--profile F`, `--tip`, `--lock`, `--unlock`) is
+//! resolved as for `osrl simulate` and saved with the model (`ModelInfo::profile`), so the saved
+//! model finds the same robot and home again.
+//!
 //! The config file's sections `robot`, `[trajectory]`, `[sim]`, `[learner]` and `[train]` set
 //! the run (the `[sim]` control period is the learner's and is saved with it); `[controller]`,
 //! `[model_error]` and `[simulate]` configure `osrl simulate` and are refused here.
 
 use crate::config::Config;
 use crate::progress;
+use crate::robot_entry::ProfileArgs;
 use crate::train_json::{rejected, summary_json, MAX_REJECTED_SHARE};
 use crate::util::{print_json, trajectory_kind};
 use anyhow::{bail, Context, Result};
@@ -28,6 +33,8 @@ pub struct Args {
     /// Robot: `planar3`, `sarcos7` or a URDF file (default: the config's, planar3).
     #[arg(long)]
     pub robot: Option<String>,
+    #[command(flatten)]
+    pub profile: ProfileArgs,
     /// Trajectory: `figure8`, `circle` or `min_jerk` (default: the config's, figure8).
     #[arg(long, value_parser = ["figure8", "circle", "min_jerk"])]
     pub trajectory: Option<String>,
@@ -89,14 +96,7 @@ fn config(a: &Args) -> Result<Config> {
     if let Some(r) = &a.robot {
         cfg.robot.set_name(r);
     }
-    if !cfg.robot.0.is_empty() {
-        bail!(
-            "a robot profile ([robot] section) cannot be saved with a trained model yet: export \
-             the profiled robot with `osrl robot --robot {} --profile F --urdf > G.urdf` (the \
-             profile travels in the file) and train on G.urdf",
-            cfg.robot.name()
-        );
-    }
+    cfg.robot.0 = a.profile.apply(&cfg.robot.0)?;
     if let Some(t) = &a.trajectory {
         cfg.trajectory.kind = trajectory_kind(t);
     }
@@ -114,7 +114,7 @@ fn config(a: &Args) -> Result<Config> {
 pub fn run(a: Args) -> Result<()> {
     let cfg = config(&a)?;
     crate::util::check_out_file("--out", &a.out)?;
-    let setup = Setup::along(cfg.robot.name(), cfg.trajectory.clone())?
+    let setup = Setup::profiled(cfg.robot.name(), &cfg.robot.0, cfg.trajectory.clone())?
         .with_sim(cfg.sim.clone())?
         .with_learner(cfg.learner.clone())
         .context("[learner]")?

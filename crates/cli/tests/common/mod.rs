@@ -41,6 +41,7 @@ pub fn untrained_model() -> osrl_learn::SavedModel {
         control_period: 0.002,
         sim_training_minutes: 0.0,
         seed: 0,
+        profile: Default::default(),
     };
     osrl_learn::SavedModel::new(info, learner).unwrap()
 }

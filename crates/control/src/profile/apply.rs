@@ -6,12 +6,12 @@ use crate::error::Result;
 use crate::trajectory::Trajectory;
 use osrl_dynamics::Model;
 
-/// The effective inertia of each joint at `q` with every other joint free, `1 / (M⁻¹)_ii`
-/// (kg·m² or kg; at most `M_ii`).
-pub(super) fn free_inertia(model: &Model, q: &[f64]) -> Result<Vec<f64>> {
+/// The effective inertia of each joint at `q` with every other joint free, `m_i = 1 / (M⁻¹)_ii`,
+/// and with every other joint locked, `M_ii` (kg·m² or kg; `m_i ≤ M_ii`).
+pub(super) fn joint_inertias(model: &Model, q: &[f64]) -> Result<(Vec<f64>, Vec<f64>)> {
     let mut data = model.data();
     let m = osrl_dynamics::crba(model, &mut data, q)?.clone_owned();
-    let Some(chol) = m.cholesky() else {
+    let Some(chol) = m.clone().cholesky() else {
         return bad(
             "home",
             format!(
@@ -21,7 +21,11 @@ pub(super) fn free_inertia(model: &Model, q: &[f64]) -> Result<Vec<f64>> {
         );
     };
     let inv = chol.inverse();
-    Ok((0..model.nq()).map(|i| 1.0 / inv[(i, i)]).collect())
+    let n = model.nq();
+    Ok((
+        (0..n).map(|i| 1.0 / inv[(i, i)]).collect(),
+        (0..n).map(|i| m[(i, i)]).collect(),
+    ))
 }
 
 /// The model with the profile's postures, gains and torque limits (the model itself when

@@ -8,18 +8,23 @@
 //! - **home**: the best admissible posture of [`home`]'s search (well conditioned, inside the
 //!   limits, tip in front of the base at 40–75 % of the reach, gravity within half the torque
 //!   limits) whose default path is feasible; the next ones are tried if it is not.
-//! - **rest** = home; **kp** = `m_i ω²`, **kd** = `2 ζ m_i ω` with `ω` =
-//!   [`DEFAULT_FREQUENCY`] rad/s, `ζ` = [`DEFAULT_DAMPING`] and `m_i = 1 / (M⁻¹(home))_ii` the
-//!   inertia joint `i` moves when every other joint is free: the same null-space time scale on
-//!   every joint whatever its inertia, and `M⁻¹K` has eigenvalues at most `n ω²` (its scaled
-//!   form has a unit diagonal), so the 500 Hz loop stays far from its stability bound. (Gains
-//!   from `M_ii` made the Panda chatter: two nearly parallel joints form a light mode that
-//!   `M_ii` does not see.) **torque limits**: the URDF's `effort`.
+//! - **rest** = home; **kp** = `m_i ω²`, **kd** = `2 ζ ω √(m_i M_ii)` with `ω` =
+//!   [`DEFAULT_FREQUENCY`] rad/s, `ζ` = [`DEFAULT_DAMPING`], `m_i = 1 / (M⁻¹(home))_ii` the
+//!   inertia joint `i` moves when every other joint is free and `M_ii(home)` the one it moves
+//!   when every other joint is locked: the same null-space time scale on every joint whatever
+//!   its inertia, and `M⁻¹K` has eigenvalues at most `n ω²` (its scaled form has a unit
+//!   diagonal), so the 500 Hz loop stays far from its stability bound. (Stiffness from `M_ii`
+//!   made the Panda chatter: two nearly parallel joints form a light mode that `M_ii` does not
+//!   see. Damping from `m_i` alone left the heavy mode of the same joints, 25 times `m_i`,
+//!   at damping ratio 0.14 (0.25 under the training's 3× PD): the return home between training
+//!   episodes never settled. The geometric mean damps it at 0.68 (1.0 under 3×), and the light
+//!   mode's damping pole stays at `2 ω √(M_ii/m_i)` ≈ 100 rad/s, 0.2 of the 500 Hz bound.)
+//!   **torque limits**: the URDF's `effort`.
 //! - **path**: a figure-8 centred at the tip at home, in the vertical plane facing the arm
 //!   ([`placement`]), half-width and half-height [`DEFAULT_SCALE`] × the reach, halved up to
 //!   twice until it is reachable by IK over a whole cycle inside the joint limits and within
 //!   [`TORQUE_SHARE`] of the torque limits, and until eq. 7 (`N = I`, default task gains, true
-//!   model, 500 Hz) tracks it for two periods within [`TRACKING_BOUND_MM`] RMS without a
+//!   model, 500 Hz) tracks it for three periods within [`TRACKING_BOUND_MM`] RMS without a
 //!   saturated torque. An arm for which no candidate works is refused
 //!   with the last reason.
 
@@ -35,7 +40,7 @@ pub use resolved::{PathFrame, Profiled, ResolvedProfile, Source};
 pub use verify::TRACKING_BOUND_MM;
 
 use crate::error::Result;
-use apply::{apply, figure8, free_inertia};
+use apply::{apply, figure8, joint_inertias};
 use check::{bad, check_given};
 use osrl_dynamics::{robots, Model, RobotProfile};
 
@@ -141,9 +146,13 @@ pub fn resolve(model: &Model, given: &RobotProfile) -> Result<Profiled> {
         let (kp, kd) = match builtin {
             true => (model.spec().kp.clone(), model.spec().kd.clone()),
             false => {
-                let m = free_inertia(model, home)?;
-                let kp = m.iter().map(|m| m * omega * omega).collect();
-                let kd = m.iter().map(|m| 2.0 * zeta * m * omega).collect();
+                let (free, locked) = joint_inertias(model, home)?;
+                let kp = free.iter().map(|m| m * omega * omega).collect();
+                let kd = free
+                    .iter()
+                    .zip(&locked)
+                    .map(|(m, ml)| 2.0 * zeta * (m * ml).sqrt() * omega)
+                    .collect();
                 (kp, kd)
             }
         };

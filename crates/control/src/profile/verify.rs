@@ -1,5 +1,6 @@
 //! The last check of a computed default: eq. 7 (`N = I`, the default task gains, the true
-//! model) on the simulated robot along the default path for two periods must track within
+//! model) on the simulated robot along the default path for three periods (the 12 s of the
+//! published-arms table) must track within
 //! [`TRACKING_BOUND_MM`] RMS without saturating a torque. (Steps at a joint limit are not
 //! refused: where the null space drifts to a hard stop while the task is tracked, the
 //! published-arms table reports them.)
@@ -13,17 +14,20 @@ use osrl_dynamics::{Model, SimConfig, SimRobot};
 
 /// Largest RMS tracking error (mm) of eq. 7 on a computed default path (issue 28's bound).
 pub const TRACKING_BOUND_MM: f64 = 0.05;
+/// Periods of the path simulated (three: a saturation in the third period of the TALOS arm's
+/// first candidate went unseen with two).
+const PERIODS: usize = 3;
 
-/// Runs eq. 7 from rest at `start` for two periods of `traj` (the default simulator, 500 Hz)
+/// Runs eq. 7 from rest at `start` for three periods of `traj` (the default simulator, 500 Hz)
 /// and returns its metrics, or an error saying what missed the bound.
 pub(super) fn eq7_tracks(model: &Model, traj: &Trajectory, start: &[f64]) -> Result<Metrics> {
     let mut sim = SimRobot::new(model.clone(), SimConfig::default())?;
     sim.reset(start, &vec![0.0; model.nq()])?;
     let mut osc = Osc::new(model.clone(), OscConfig::default())?;
-    let seconds = 2.0 * traj.period();
+    let seconds = PERIODS as f64 * traj.period();
     let m = run_closed_loop(&mut sim, &mut osc, traj, model.task_axes(), seconds)?.metrics;
     if m.tracking_rms_mm > TRACKING_BOUND_MM || m.torque_saturation_steps > 0 {
-        let steps = traj.steps_per_period(SimConfig::default().control_period) * 2;
+        let steps = traj.steps_per_period(SimConfig::default().control_period) * PERIODS;
         let implicit = sim.stats().implicit_friction;
         let stiff = if implicit > 0 {
             let (j, l) = model

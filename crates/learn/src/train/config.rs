@@ -93,6 +93,18 @@ pub struct TrainConfig {
     /// The same after an episode braked or aborted on its task error (s): short, so the PD
     /// return home takes over before the error grows. Default 0.05.
     pub brake_switch_seconds: f64,
+    /// The arm is at home when every joint is within this of the home posture (rad or m) and
+    /// moves slower than this (rad/s or m/s); an on-policy episode starts only there. Default
+    /// 0.01.
+    pub home_tolerance: f64,
+    /// Integral time of the hold at home between episodes (s; `K_I = K_P / this`; 0: no
+    /// integral action): removes the static offset that the learned gravity model's error
+    /// leaves under the joint PD gains. Default 1: well below the stability bound of the
+    /// weakly damped modes of arms with inertia-scaled gains.
+    pub home_integral_seconds: f64,
+    /// The hold at home ends when the arm is settled, after at least 1 s and at most this (s);
+    /// an episode that starts unsettled is counted (`unsettled_starts`). Default 5.
+    pub home_hold_seconds: f64,
     /// The curriculum and the path clock of the on-policy episodes.
     pub curriculum: super::CurriculumConfig,
     /// Seed of the exploration and babbling noise. Default 0.
@@ -115,6 +127,9 @@ impl Default for TrainConfig {
             switch_seconds: 0.25,
             first_switch_seconds: 5.0,
             brake_switch_seconds: 0.05,
+            home_tolerance: 0.01,
+            home_integral_seconds: 1.0,
+            home_hold_seconds: 5.0,
             curriculum: super::CurriculumConfig::default(),
             seed: 0,
         }
@@ -148,6 +163,12 @@ impl TrainConfig {
             ("reset_error", self.reset_error > 0.0),
             ("eval_every_minutes", finite_nonneg(self.eval_every_minutes)),
             ("learn_every", self.learn_every >= 1),
+            ("home_tolerance", finite_pos(self.home_tolerance)),
+            (
+                "home_integral_seconds",
+                finite_nonneg(self.home_integral_seconds),
+            ),
+            ("home_hold_seconds", finite_pos(self.home_hold_seconds)),
             ("switch_seconds", finite_nonneg(self.switch_seconds)),
             (
                 "first_switch_seconds",

@@ -9,6 +9,7 @@
 mod babble;
 mod config;
 mod curriculum;
+mod home;
 mod observer;
 mod on_policy;
 mod safety;

@@ -18,42 +18,18 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
         let gravity_on = self.learner.config().experimental.gravity_on_policy;
         self.learner.freeze_gravity(!gravity_on);
         while !self.done() {
-            if self.away_from_home() {
-                self.return_home()?;
-                continue;
+            if self.away_from_home() && !self.return_home()? {
+                // Not settled within the hold: the episode starts from where the arm is
+                // (counted), rather than returning home again and again.
+                self.unsettled_starts += 1;
+            }
+            if self.done() {
+                break;
             }
             self.episode()?;
             self.episode_ended();
         }
         Ok(())
-    }
-
-    /// Whether the arm is not at rest at home (1 cm·rad, 0.01 rad/s).
-    fn away_from_home(&self) -> bool {
-        let off = self
-            .prev
-            .q
-            .iter()
-            .zip(&self.home)
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0, f64::max);
-        off > 0.01 || self.prev.qd.amax() > 0.01
-    }
-
-    /// A PD move home (2 s) and 1 s of settling there, learned from if configured.
-    fn return_home(&mut self) -> Result<()> {
-        self.learning = self.cfg.learn_on_policy && self.cfg.learn_returning_home;
-        let (home, limit) = (self.home.clone(), self.total_steps);
-        let braked = self
-            .progress
-            .last_episode
-            .is_some_and(|e| e.braked || e.aborted);
-        self.begin_fade(if braked {
-            self.cfg.brake_switch_seconds
-        } else {
-            self.cfg.switch_seconds
-        });
-        self.pd_move(&home, 2.0, 1.0, 0.0, limit)
     }
 
     /// One episode along the path from its start at the curriculum's stage: commands with

@@ -49,6 +49,10 @@ pub struct TrainSummary {
     pub clipped_on_policy: u64,
     pub stats: LearnerStats,
     pub n_local_models: usize,
+    /// On-policy episodes that started although the return home before them had not settled
+    /// within `home_hold_seconds` (`home_tolerance`).
+    #[serde(default)]
+    pub unsettled_starts: u64,
 }
 
 impl TrainSummary {
@@ -112,6 +116,10 @@ pub struct Trainer<'a, R: Robot + ?Sized> {
     pub(super) rate_limited: u64,
     /// The babbling noise process (unit variance per joint).
     pub(super) babble_noise: Vec<f64>,
+    /// The integral of the joint error while holding home (rad·s), and the returns home that
+    /// did not settle within the hold (the episode started anyway).
+    pub(super) integral: Vec<f64>,
+    pub(super) unsettled_starts: u64,
     /// The curriculum's current stage.
     pub(super) curriculum: Curriculum,
     /// The fade between command sources: the command it starts from and the steps left.
@@ -186,6 +194,8 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
             rate,
             rate_limited: 0,
             babble_noise: vec![0.0; n],
+            integral: vec![0.0; n],
+            unsettled_starts: 0,
             curriculum: Curriculum::new(&cfg.curriculum),
             fade_from: vec![0.0; n],
             fade_left: 0,
@@ -330,6 +340,7 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
             driver_rate_limited: self.rate_limited,
             stats: self.learner.stats(),
             n_local_models: self.learner.n_local_models(),
+            unsettled_starts: self.unsettled_starts,
         }
     }
 }
