@@ -17,7 +17,12 @@ pub fn select<'a>(
     let (mut ok, mut failed) = (Vec::new(), Vec::new());
     for j in jobs
         .iter()
-        .filter(|j| j.job.robot == robot && j.job.variant == variant && j.job.payload == payload)
+        .filter(|j| {
+            j.job.robot == robot
+                && j.job.variant == variant
+                && j.job.payload == payload
+                && !j.job.family
+        })
     {
         match &j.outcome {
             Ok(t) => ok.push(t),

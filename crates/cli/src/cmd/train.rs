@@ -25,8 +25,10 @@ pub struct Args {
     /// Robot: `planar3`, `sarcos7` or a URDF file (default: the config's, planar3).
     #[arg(long)]
     pub robot: Option<String>,
-    /// Trajectory: `figure8`, `circle` or `min_jerk` (default: the config's, figure8).
-    #[arg(long, value_parser = ["figure8", "circle", "min_jerk"])]
+    /// Trajectory: `figure8`, `circle`, `min_jerk`, or `family` (one path per episode drawn
+    /// from the family of `[trajectory.family]`, `docs/family.md`) (default: the config's,
+    /// figure8).
+    #[arg(long, value_parser = ["figure8", "circle", "min_jerk", "family"])]
     pub trajectory: Option<String>,
     /// TOML config file with `[trajectory]`, `[sim]`, `[learner]` and `[train]` sections (see
     /// `config.rs`).
@@ -233,6 +235,7 @@ fn summary_json(s: &TrainSummary, final_eval: &EvalSummary, robot: &str) -> Resu
         "minutes_to_1mm": s.minutes_to(|e| e.tracking_rms_mm <= 1.0),
         "minutes_to_nmse_0.05": s.minutes_to(|e| e.command_nmse <= 0.05),
         "episodes": s.episodes,
+        "paths_drawn": s.paths_drawn,
         "aborted_episodes": s.aborted_episodes,
         "braked_episodes": s.braked_episodes,
         "counters": s.stats,

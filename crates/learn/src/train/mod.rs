@@ -11,11 +11,13 @@ mod config;
 mod curriculum;
 mod observer;
 mod on_policy;
+mod paths;
 mod safety;
 mod trainer;
 
 pub use config::{BabbleConfig, TrainConfig};
 pub use curriculum::CurriculumConfig;
+pub use paths::PathSource;
 pub use observer::{EpisodeReport, Observer, OnEvaluation, Phase, Progress};
 pub use safety::{StepPoint, STEP_BIN_SECONDS};
 pub use trainer::{Evaluate, TrainSummary, Trainer};
