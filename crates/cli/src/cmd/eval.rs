@@ -94,7 +94,9 @@ pub fn run(a: Args) -> Result<()> {
     let leaves = trained.leaves_by(setup.trajectory());
     if leaves > REGION_TOLERANCE {
         eprintln!(
-            "warning: the evaluated path leaves the region the model was trained on by up to              {:.1} mm (the {} region: ±{:.3} m × ±{:.3} m around ({:.3}, {:.3}, {:.3}) m in              its plane); see support_share",
+            "warning: the evaluated path leaves the region the model was trained on by up to \
+             {:.1} mm (the {} region: ±{:.3} m × ±{:.3} m around ({:.3}, {:.3}, {:.3}) m in \
+             its plane); see support_share",
             leaves * 1e3,
             if setup_trained_on_family(&saved) { "family's" } else { "training path's" },
             trained.half[0],
