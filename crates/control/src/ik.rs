@@ -141,7 +141,9 @@ pub fn check_reachable(model: &Model, traj: &Trajectory, opts: &IkOptions) -> Re
     let approach = (lead / spacing).ceil() as usize;
     let times: Vec<f64> = (1..approach)
         .map(|k| k as f64 * lead / approach as f64)
-        .chain((0..=samples).map(|k| lead + traj.ramp() + traj.period() * k as f64 / samples as f64))
+        .chain(
+            (0..=samples).map(|k| lead + traj.ramp() + traj.period() * k as f64 / samples as f64),
+        )
         .collect();
     for &t in std::iter::once(&0.0).chain(&times) {
         let p = traj.sample(t).x;

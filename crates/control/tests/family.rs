@@ -68,7 +68,9 @@ fn every_drawn_path_is_in_the_region_reachable_and_within_the_limits() {
         let region = Region::of(&model, &cfg).unwrap();
         // The default region: the base figure-8's box grown by 50 %.
         let [a, b] = cfg.base(&model).unwrap();
-        assert!((region.half[0] - 1.5 * a).abs() < 1e-12 && (region.half[1] - 1.5 * b).abs() < 1e-12);
+        assert!(
+            (region.half[0] - 1.5 * a).abs() < 1e-12 && (region.half[1] - 1.5 * b).abs() < 1e-12
+        );
         let mut s = sampler(&model, 3);
         let base = cfg.build(&model).unwrap();
         let home = check_reachable(&model, &base, &IkOptions::default())
@@ -89,11 +91,19 @@ fn every_drawn_path_is_in_the_region_reachable_and_within_the_limits() {
             assert_eq!(r.q_start, p.home);
             check_reachable(&model, &p.approached, &IkOptions::default()).unwrap();
             let (share, margin) = replay(&model, &home, &p);
-            assert!(share <= 0.8 && (share - p.torque_share).abs() < 1e-12, "{share} vs {}", p.torque_share);
+            assert!(
+                share <= 0.8 && (share - p.torque_share).abs() < 1e-12,
+                "{share} vs {}",
+                p.torque_share
+            );
             assert!(margin >= 0.05, "{}: margin {margin}", model.name());
         }
         if model.name().starts_with("planar3") {
-            for k in [TrajectoryKind::Figure8, TrajectoryKind::Circle, TrajectoryKind::MinJerk] {
+            for k in [
+                TrajectoryKind::Figure8,
+                TrajectoryKind::Circle,
+                TrajectoryKind::MinJerk,
+            ] {
                 assert!(kinds.contains(&k), "{kinds:?}");
             }
         }
@@ -115,7 +125,9 @@ fn a_family_config_out_of_range_is_refused_with_its_field() {
     tiny.family.max_acceleration_ratio = 1e-9;
     tiny.family.max_draws = 20;
     let base = tiny.build(&model).unwrap();
-    let home = check_reachable(&model, &base, &IkOptions::default()).unwrap().q_start;
+    let home = check_reachable(&model, &base, &IkOptions::default())
+        .unwrap()
+        .q_start;
     let mut s = FamilySampler::new(&model, &tiny, &home, 0).unwrap();
     let e = s.draw().unwrap_err().to_string();
     assert!(e.contains("20 draws"), "{e}");

@@ -79,7 +79,12 @@ pub fn e9(done: &[JobResult]) -> ByRobot<E9Row> {
             family_on_figure8: Vec::new(),
             paths: Vec::new(),
             failed: (fam.iter())
-                .filter_map(|j| j.outcome.as_ref().err().map(|e| format!("{}: {e}", j.job.name())))
+                .filter_map(|j| {
+                    j.outcome
+                        .as_ref()
+                        .err()
+                        .map(|e| format!("{}: {e}", j.job.name()))
+                })
                 .collect(),
         };
         for f in &fam {

@@ -60,8 +60,12 @@ impl Setup {
         (0..n).map(|_| Ok(s.draw()?)).collect()
     }
 
-    /// Evaluates `learner` on `truth` along `path` alone, from rest on its start (its own home),
-    /// [`Setup::eval_periods`] periods after a warm-up one, with this set-up's task gains.
+    /// Evaluates `learner` on `truth` along `path` as training runs it: from rest at this
+    /// set-up's home, behind the approach to the path's start (not evaluated), then
+    /// [`Setup::eval_periods`] periods after a warm-up one, with this set-up's task gains. (From
+    /// rest on the path's own start instead, as `osrl eval --config` starts, a redundant arm
+    /// starts in the null-space posture eq. 7 settles in there, which training need not have
+    /// visited.)
     ///
     /// # Errors
     /// As [`Evaluator::evaluate`].
@@ -74,8 +78,8 @@ impl Setup {
         let mut ev = Evaluator::new(
             truth.clone(),
             self.sim().clone(),
-            path.path.clone(),
-            path.home.clone(),
+            path.approached.clone(),
+            self.home().to_vec(),
             self.train_config().gains,
             self.eval_periods(),
         )?;

@@ -185,7 +185,12 @@ pub fn run_one(
     if job.is_e9(sizes) {
         let paths = crate::family::held_out(setup, sizes.e9.paths_per_kind)?;
         let evals = (paths.iter())
-            .map(|p| Ok((crate::family::label(p), setup.evaluate_path(model, &mut learner, p)?)))
+            .map(|p| {
+                Ok((
+                    crate::family::label(p),
+                    setup.evaluate_path(model, &mut learner, p)?,
+                ))
+            })
             .collect::<Result<Vec<_>>>()?;
         trained.held_out = Some(evals);
     }
@@ -263,7 +268,9 @@ mod tests {
         }
         for robot in ["sarcos7", "planar3"] {
             let rwr: Vec<u64> = (jobs.iter())
-                .filter(|j| j.robot == robot && j.variant == Variant::Rwr && !j.payload && !j.family)
+                .filter(|j| {
+                    j.robot == robot && j.variant == Variant::Rwr && !j.payload && !j.family
+                })
                 .map(|j| j.seed)
                 .collect();
             assert_eq!(rwr, vec![0, 1, 2]);

@@ -44,10 +44,7 @@ fn a_family_trained_controller_beats_a_figure8_only_one_on_a_held_out_circle() {
     assert!(!fam.diverged);
     eprintln!(
         "held-out circle: family {:.3} mm / nMSE {:.4}, figure-8 only {:.3} mm / nMSE {:.4}",
-        fam.tracking_rms_mm,
-        fam.command_nmse,
-        f8.tracking_rms_mm,
-        f8.command_nmse
+        fam.tracking_rms_mm, fam.command_nmse, f8.tracking_rms_mm, f8.command_nmse
     );
     assert!(
         fam.tracking_rms_mm < 0.5 * f8.tracking_rms_mm,

@@ -17,7 +17,9 @@ fn over_seeds(points: &[E9Point], f: impl Fn(&E9Point) -> f64) -> String {
     let mean = v.iter().sum::<f64>() / v.len() as f64;
     let (lo, hi) = v
         .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(*x), b.max(*x)));
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+            (a.min(*x), b.max(*x))
+        });
     if v.len() == 1 {
         num(Some(mean))
     } else {
@@ -118,7 +120,11 @@ pub(crate) fn figure(robot: &str, e: &E9Row) -> Figure {
 pub(crate) fn figures(out: &Path, r: &Results) -> Result<Vec<(String, String)>> {
     let mut figs = Vec::new();
     for (robot, e) in &r.e9 {
-        plot::save(&figure(robot, e), &out.join("E9"), &format!("{robot}_held_out"))?;
+        plot::save(
+            &figure(robot, e),
+            &out.join("E9"),
+            &format!("{robot}_held_out"),
+        )?;
         let labels: Vec<String> = (e.paths.iter().enumerate())
             .map(|(i, p)| format!("{}: {}", i + 1, p.label))
             .collect();

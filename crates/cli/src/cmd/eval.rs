@@ -6,9 +6,9 @@
 
 use crate::config::Config;
 use crate::util::{print_json, trajectory_kind};
+use anyhow::{bail, Context, Result};
 use osrl_control::family::Region;
 use osrl_control::{TrajectoryConfig, TrajectoryKind};
-use anyhow::{bail, Context, Result};
 use osrl_experiments::stats::{measured, EvalSummary};
 use osrl_experiments::Setup;
 use osrl_learn::SavedModel;
@@ -98,7 +98,11 @@ pub fn run(a: Args) -> Result<()> {
              {:.1} mm (the {} region: ±{:.3} m × ±{:.3} m around ({:.3}, {:.3}, {:.3}) m in \
              its plane); see support_share",
             leaves * 1e3,
-            if setup_trained_on_family(&saved) { "family's" } else { "training path's" },
+            if setup_trained_on_family(&saved) {
+                "family's"
+            } else {
+                "training path's"
+            },
             trained.half[0],
             trained.half[1],
             trained.centre[0],

@@ -44,7 +44,14 @@ impl Acc {
 
     /// One step: task error `e` (m), whether the command fell back to `u0` or came from the
     /// trained fields (`learned`), the learned, optimal and nominal commands.
-    pub fn add(&mut self, e: f64, (fallback, learned): (bool, bool), u: &[f64], u_star: &[f64], u0: &[f64]) {
+    pub fn add(
+        &mut self,
+        e: f64,
+        (fallback, learned): (bool, bool),
+        u: &[f64],
+        u_star: &[f64],
+        u0: &[f64],
+    ) {
         self.count += 1;
         self.learned += learned as usize;
         self.e2 += e * e;

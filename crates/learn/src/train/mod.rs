@@ -17,8 +17,8 @@ mod trainer;
 
 pub use config::{BabbleConfig, TrainConfig};
 pub use curriculum::CurriculumConfig;
-pub use paths::PathSource;
 pub use observer::{EpisodeReport, Observer, OnEvaluation, Phase, Progress};
+pub use paths::PathSource;
 pub use safety::{StepPoint, STEP_BIN_SECONDS};
 pub use trainer::{Evaluate, TrainSummary, Trainer};
 

@@ -65,7 +65,13 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
         self.next_path()?;
         let stage = self.curriculum.current();
         let (cfg, rng) = (self.cfg, &mut self.rng);
-        let path = EpisodePath::new(&self.episode_path, stage, cfg.episode_seconds, &cfg.curriculum, rng);
+        let path = EpisodePath::new(
+            &self.episode_path,
+            stage,
+            cfg.episode_seconds,
+            &cfg.curriculum,
+            rng,
+        );
         // The fade from the PD hold takes the switch; the learner's own limiter starts afresh.
         self.learner.start_episode(None);
         let first = self.progress.episodes == 1;

@@ -110,7 +110,10 @@ mod tests {
         let (summary, calls) = run(approached);
         let summary = summary.unwrap();
         assert!(summary.episodes > 0);
-        assert_eq!((summary.paths_drawn, calls), (summary.episodes, summary.episodes));
+        assert_eq!(
+            (summary.paths_drawn, calls),
+            (summary.episodes, summary.episodes)
+        );
         let (err, _) = run(circle);
         let e = err.unwrap_err().to_string();
         assert!(e.contains("home's task point") && e.contains("mm"), "{e}");

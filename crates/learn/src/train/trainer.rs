@@ -3,8 +3,8 @@
 //! `on_policy.rs`; [`Trainer::run`] reads as the list of them.
 
 use super::curriculum::Curriculum;
-use super::paths::{check_start, PathSource};
 use super::observer::{Observer, Phase, Progress};
+use super::paths::{check_start, PathSource};
 use super::safety::{StepMonitor, StepPoint};
 use super::TrainConfig;
 use crate::error::{LearnError, Result};
