@@ -98,5 +98,6 @@ if errors:
     print("report check failed:\n  " + "\n  ".join(errors[:40]))
     sys.exit(1)
 n_div = json.dumps(r).count('"diverged": true')
-print(f"report check: E1..E7 present, all numbers finite, {html.count('<svg')} figures inline, "
+e9_robots = ", ".join(sorted(r.get("E9", {})))
+print(f"report check: E1..E7 present{f', E9 for {e9_robots}' if e9_robots else ''}, all numbers finite, {html.count('<svg')} figures inline, "
       f"{len(svgs)} SVG+PNG pairs, {n_div} diverged evaluations reported, wall {r['wall_seconds']:.0f} s")
