@@ -51,13 +51,21 @@ fn family_training_and_eval_on_any_described_path() {
     );
     let (ok, out, err) = osrl(&["eval", "--model", m, "--config", &outside, "--json"]);
     assert!(ok, "{err}");
-    assert!(err.contains("warning: the evaluated path leaves the region"), "{err}");
-    let left = last_json(&out)["leaves_trained_region_mm"].as_f64().unwrap();
+    assert!(
+        err.contains("warning: the evaluated path leaves the region"),
+        "{err}"
+    );
+    let left = last_json(&out)["leaves_trained_region_mm"]
+        .as_f64()
+        .unwrap();
     assert!((left - 50.0).abs() < 0.5, "{left}");
     // Refused: other sections, and a family instead of one path.
     let train = file("train.toml", "[train]\nminutes = 1.0\n");
     let (ok, _, err) = osrl(&["eval", "--model", m, "--config", &train]);
-    assert!(!ok && err.contains("[train]") && err.contains("keep only [trajectory]"), "{err}");
+    assert!(
+        !ok && err.contains("[train]") && err.contains("keep only [trajectory]"),
+        "{err}"
+    );
     let fam = file("fam.toml", "[trajectory]\nkind = \"family\"\n");
     let (ok, _, err) = osrl(&["eval", "--model", m, "--config", &fam]);
     assert!(!ok && err.contains("not one path"), "{err}");
