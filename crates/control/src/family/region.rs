@@ -93,7 +93,7 @@ pub(crate) fn orthonormal(
 ) -> Result<(Vector3<f64>, Vector3<f64>)> {
     let u = e1.normalize();
     let w = e2 - u * u.dot(&e2);
-    if !(w.norm() > 1e-6) || !u.iter().all(|x| x.is_finite()) {
+    if w.norm().is_nan() || w.norm() <= 1e-6 || !u.iter().all(|x| x.is_finite()) {
         return Err(ControlError::InvalidTrajectory(
             "the plane directions e1 and e2 must be non-zero and not parallel".into(),
         ));

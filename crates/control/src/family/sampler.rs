@@ -236,7 +236,7 @@ impl FamilySampler {
             }
             let after = traj.sample((k + 1) as f64 * dt);
             let e = crate::task_error(&after, model.task_axes(), meas.x.as_slice());
-            if !(e < 1e-3) {
+            if e.is_nan() || e >= 1e-3 {
                 return Ok(None);
             }
         }
