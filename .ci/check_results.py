@@ -53,6 +53,40 @@ for robot in ["planar3", "sarcos7"]:
                   "max_torque_rate", "max_command_step_analytical", "step_curve"]:
             if k not in row:
                 errors.append(f"E3.{robot}.safety[{i}]: no {k}")
+# E9 (issue 27): when the sizes ask for it, every E9 robot has seeds, held-out paths of every
+# kind, and per path and seed both controllers' tracking, nMSE and support share, and the bound.
+e9_sizes = r.get("config", {}).get("sizes", {}).get("e9", {})
+for robot in ["planar3", "sarcos7"]:
+    want = e9_sizes.get(f"{robot}_seeds", 0)
+    if not want:
+        continue
+    row = r.get("E9", {}).get(robot)
+    if row is None:
+        errors.append(f"E9 has no {robot}")
+        continue
+    if row.get("failed"):
+        errors.append(f"E9.{robot}: failed runs {row['failed']}")
+    if len(row.get("seeds", [])) != want:
+        errors.append(f"E9.{robot}: seeds {row.get('seeds')} for {want} asked")
+    paths = row.get("paths", [])
+    if len(paths) != 3 * e9_sizes.get("paths_per_kind", 0):
+        errors.append(f"E9.{robot}: {len(paths)} held-out paths")
+    for kind in ["figure-8", "circle", "min-jerk"]:
+        if not any(p["label"].startswith(kind) for p in paths):
+            errors.append(f"E9.{robot}: no held-out {kind}")
+    for i, p in enumerate(paths):
+        for side in ["figure8_only", "family"]:
+            pts = p.get(side, [])
+            if len(pts) != want:
+                errors.append(f"E9.{robot}.paths[{i}].{side}: {len(pts)} seeds")
+            for x in pts:
+                for k in ["tracking_rms_mm", "command_nmse", "support_share"]:
+                    if k not in x:
+                        errors.append(f"E9.{robot}.paths[{i}].{side}: no {k}")
+                if not 0.0 <= x.get("support_share", -1) <= 1.0:
+                    errors.append(f"E9.{robot}.paths[{i}].{side}: support_share out of [0, 1]")
+        if len(p.get("family_within_bounds", [])) != want:
+            errors.append(f"E9.{robot}.paths[{i}]: no bound per seed")
 html = (out / "index.html").read_text()
 svgs = sorted(out.glob("E*/**/*.svg"))
 if html.count("<svg") < 10 or html.count("<figcaption>") != html.count("<svg"):
@@ -64,5 +98,6 @@ if errors:
     print("report check failed:\n  " + "\n  ".join(errors[:40]))
     sys.exit(1)
 n_div = json.dumps(r).count('"diverged": true')
-print(f"report check: E1..E7 present, all numbers finite, {html.count('<svg')} figures inline, "
+e9_robots = ", ".join(sorted(r.get("E9", {})))
+print(f"report check: E1..E7 present{f', E9 for {e9_robots}' if e9_robots else ''}, all numbers finite, {html.count('<svg')} figures inline, "
       f"{len(svgs)} SVG+PNG pairs, {n_div} diverged evaluations reported, wall {r['wall_seconds']:.0f} s")

@@ -35,6 +35,7 @@ pub fn summary_json(s: &TrainSummary, final_eval: &EvalSummary, robot: &str) -> 
         "minutes_to_1mm": s.minutes_to(|e| e.tracking_rms_mm <= 1.0),
         "minutes_to_nmse_0.05": s.minutes_to(|e| e.command_nmse <= 0.05),
         "episodes": s.episodes,
+        "paths_drawn": s.paths_drawn,
         "aborted_episodes": s.aborted_episodes,
         "braked_episodes": s.braked_episodes,
         "counters": s.stats,

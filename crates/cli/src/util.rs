@@ -10,11 +10,12 @@ pub fn load_robot(spec: &str) -> Result<Model> {
     Ok(osrl_learn::load_robot(spec)?)
 }
 
-/// Parses a `--trajectory` value (checked by clap: `figure8`, `circle`, `min_jerk`).
+/// Parses a `--trajectory` value (checked by clap: `figure8`, `circle`, `min_jerk`, `family`).
 pub fn trajectory_kind(t: &str) -> TrajectoryKind {
     match t {
         "circle" => TrajectoryKind::Circle,
         "min_jerk" => TrajectoryKind::MinJerk,
+        "family" => TrajectoryKind::Family,
         _ => TrajectoryKind::Figure8,
     }
 }

@@ -119,8 +119,8 @@ pub struct Reach {
 ///
 /// 1. Every sampled point's task coordinates must lie within the arm's reach (the sum of its link
 ///    lengths and end-effector offset) of the first joint; otherwise the error names the point.
-/// 2. IK solves the start point from `q_rest`, then follows `opts.samples` points of one cycle,
-///    each from the previous solution, keeping joints `opts.margin` inside their limits; a point
+/// 2. IK solves the start point from `q_rest`, then follows the approach ([`Trajectory::lead`];
+///    at the same spacing) and `opts.samples` points of one cycle, each from the previous solution, keeping joints `opts.margin` inside their limits; a point
 ///    left more than 0.1 mm away is unreachable (error naming the time and the residual).
 /// 3. The home posture is where eq. 7 holds the start point at rest, from the IK posture
 ///    ([`crate::settle_at_start`]): there the nominal pull of `u0` is balanced, so a run from
@@ -135,8 +135,15 @@ pub fn check_reachable(model: &Model, traj: &Trajectory, opts: &IkOptions) -> Re
         .sum::<f64>()
         + model.spec().ee_offset.norm();
     let samples = opts.samples.max(8);
-    let times: Vec<f64> = (0..=samples)
-        .map(|k| traj.ramp() + traj.period() * k as f64 / samples as f64)
+    // The approach (if any) at the cycle's sample spacing, then one cycle after the ramp.
+    let lead = traj.lead();
+    let spacing = traj.period() / samples as f64;
+    let approach = (lead / spacing).ceil() as usize;
+    let times: Vec<f64> = (1..approach)
+        .map(|k| k as f64 * lead / approach as f64)
+        .chain(
+            (0..=samples).map(|k| lead + traj.ramp() + traj.period() * k as f64 / samples as f64),
+        )
         .collect();
     for &t in std::iter::once(&0.0).chain(&times) {
         let p = traj.sample(t).x;

@@ -27,6 +27,7 @@ mod config;
 mod controller;
 pub mod damping;
 mod error;
+pub mod family;
 mod ik;
 mod linalg;
 mod model_error;

@@ -52,6 +52,30 @@ pub struct Trajectory {
     shape: Shape,
     period: f64,
     warp: TimeWarp,
+    /// A minimum-jerk lead-in from another point to the path's start, if any
+    /// ([`Trajectory::with_approach`]).
+    approach: Option<Approach>,
+}
+
+/// A minimum-jerk move at rest from `from` to `to` (the path's start) over `seconds`, run before
+/// the path.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Approach {
+    from: Vector3<f64>,
+    to: Vector3<f64>,
+    seconds: f64,
+}
+
+/// Minimum-jerk move `p0 → p1` over `dur` seconds at time `t` (clamped to the move).
+fn min_jerk_move(p0: Vector3<f64>, p1: Vector3<f64>, dur: f64, t: f64) -> Target {
+    let tau = (t / dur).clamp(0.0, 1.0);
+    let d = p1 - p0;
+    let (t2, t3) = (tau * tau, tau * tau * tau);
+    Target {
+        x: p0 + d * (t3 * (10.0 - 15.0 * tau + 6.0 * t2)),
+        xd: d * (30.0 * t2 * (1.0 - 2.0 * tau + t2) / dur),
+        xdd: d * (60.0 * tau * (1.0 - 3.0 * tau + 2.0 * t2) / (dur * dur)),
+    }
 }
 
 fn finite(what: &str, v: &Vector3<f64>) -> Result<()> {
@@ -155,6 +179,7 @@ impl Trajectory {
             shape,
             period,
             warp: TimeWarp { ramp: 0.0 },
+            approach: None,
         })
     }
 
@@ -169,7 +194,35 @@ impl Trajectory {
             shape,
             period,
             warp: TimeWarp { ramp },
+            approach: None,
         })
+    }
+
+    /// This path preceded by a minimum-jerk move at rest from `from` (world, m) to its start,
+    /// `seconds` long: `x_d(t)` is the move for `t < seconds`, then the path at `t − seconds`
+    /// (which starts at rest, so position, velocity and acceleration are continuous). Replaces
+    /// an approach the path already had. Fails on a non-finite `from` or a non-positive
+    /// `seconds`.
+    pub fn with_approach(mut self, from: Vector3<f64>, seconds: f64) -> Result<Self> {
+        finite("approach start", &from)?;
+        positive("approach seconds", seconds)?;
+        self.approach = None;
+        let to = self.sample(0.0).x;
+        self.approach = Some(Approach { from, to, seconds });
+        Ok(self)
+    }
+
+    /// Seconds of the approach before the path (0 without one).
+    pub fn lead(&self) -> f64 {
+        self.approach.map_or(0.0, |a| a.seconds)
+    }
+
+    /// The path without its approach.
+    pub fn without_approach(&self) -> Self {
+        Self {
+            approach: None,
+            ..self.clone()
+        }
     }
 
     pub fn shape(&self) -> &Shape {
@@ -197,6 +250,11 @@ impl Trajectory {
 
     /// Desired position, velocity and acceleration at time `t` (s; times before 0 give the start).
     pub fn sample(&self, t: f64) -> Target {
+        let t = match &self.approach {
+            Some(a) if t < a.seconds => return min_jerk_move(a.from, a.to, a.seconds, t),
+            Some(a) => t - a.seconds,
+            None => t,
+        };
         match &self.shape {
             Shape::Figure8 {
                 centre,

@@ -1,6 +1,7 @@
 //! The trajectory section of the config file, with per-robot defaults.
 
 use crate::error::{ControlError, Result};
+use crate::family::FamilyConfig;
 use crate::trajectory::Trajectory;
 use nalgebra::Vector3;
 use osrl_dynamics::Model;
@@ -17,6 +18,9 @@ pub enum TrajectoryKind {
     Circle,
     /// Cyclic point-to-point minimum-jerk moves through `points`.
     MinJerk,
+    /// A family of paths over a region ([`crate::family`], `[trajectory.family]`): training
+    /// draws one per episode; as one path (evaluation, home) it is its base figure-8.
+    Family,
 }
 
 /// A trajectory description. Unset (`None`/empty) fields take the robot's default
@@ -24,7 +28,7 @@ pub enum TrajectoryKind {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct TrajectoryConfig {
-    /// `figure8`, `circle` or `min_jerk`. Default `figure8`.
+    /// `figure8`, `circle`, `min_jerk` or `family`. Default `figure8`.
     pub kind: TrajectoryKind,
     /// Centre `c` (m). Default per robot: planar3 (0.65, 0, 0.25), in the arm's x–z plane;
     /// sarcos7 (0.30, 0.40, 0.05), 0.40 m in front of (+y, where the forearm points at the rest
@@ -58,6 +62,9 @@ pub struct TrajectoryConfig {
     pub points: Vec<[f64; 3]>,
     /// Duration of each minimum-jerk move (s). Default 1.
     pub move_time: f64,
+    /// The family drawn when `kind = "family"` (`[trajectory.family]`).
+    #[serde(skip_serializing_if = "FamilyConfig::is_default")]
+    pub family: FamilyConfig,
 }
 
 impl Default for TrajectoryConfig {
@@ -74,6 +81,7 @@ impl Default for TrajectoryConfig {
             ramp: 1.0,
             points: Vec::new(),
             move_time: 1.0,
+            family: FamilyConfig::default(),
         }
     }
 }
@@ -148,6 +156,27 @@ pub(crate) fn default_size(model: &Model) -> Result<(Option<f64>, Option<f64>)> 
 }
 
 impl TrajectoryConfig {
+    /// The centre and the orthonormal plane directions `(c, e1, e2)` for `model`, defaults
+    /// filled in (`e2` made orthogonal to `e1`).
+    ///
+    /// # Errors
+    /// A robot without a planar task, or parallel directions.
+    pub fn frame(&self, model: &Model) -> Result<(Vector3<f64>, Vector3<f64>, Vector3<f64>)> {
+        let d = robot_defaults(model)?;
+        let v = |o: Option<[f64; 3]>, def: Vector3<f64>| o.map(Vector3::from).unwrap_or(def);
+        let (e1, e2) = crate::family::orthonormal(v(self.e1, d.e1), v(self.e2, d.e2))?;
+        Ok((v(self.centre, d.centre), e1, e2))
+    }
+
+    /// The figure-8 half-width and half-height `[a, b]` (m) for `model`, defaults filled in.
+    ///
+    /// # Errors
+    /// A robot without a planar task.
+    pub fn base(&self, model: &Model) -> Result<[f64; 2]> {
+        let d = robot_defaults(model)?;
+        Ok([self.a.unwrap_or(d.a), self.b.unwrap_or(d.b)])
+    }
+
     /// The trajectory for `model`, defaults filled in. Fails on malformed values (see
     /// [`Trajectory`]), or when the path leaves the model's task space (a centre, direction or
     /// point component along a world axis that is not a task axis). Reachability inside the joint
@@ -176,8 +205,11 @@ impl TrajectoryConfig {
             }
             Ok(())
         };
+        if self.kind == TrajectoryKind::Family {
+            self.family.validate()?;
+        }
         match self.kind {
-            TrajectoryKind::Figure8 | TrajectoryKind::Circle => {
+            TrajectoryKind::Figure8 | TrajectoryKind::Circle | TrajectoryKind::Family => {
                 outside("centre", &centre)?;
                 outside("e1", &e1)?;
                 outside("e2", &e2)?;
@@ -185,7 +217,7 @@ impl TrajectoryConfig {
             TrajectoryKind::MinJerk => {}
         }
         match self.kind {
-            TrajectoryKind::Figure8 => {
+            TrajectoryKind::Figure8 | TrajectoryKind::Family => {
                 Trajectory::figure8(centre, e1, e2, a, b, self.period, self.ramp)
             }
             TrajectoryKind::Circle => {

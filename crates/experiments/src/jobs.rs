@@ -19,12 +19,19 @@ pub struct Job {
     pub seed: u64,
     /// Train (and evaluate) on the robot carrying the E7 payload.
     pub payload: bool,
+    /// Train on the family of paths (E9) instead of the figure-8.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub family: bool,
 }
 
 impl Job {
     /// `sarcos7 rwr+payload s0`.
     pub fn name(&self) -> String {
-        let payload = if self.payload { "+payload" } else { "" };
+        let payload = match (self.payload, self.family) {
+            (true, _) => "+payload",
+            (false, true) => "+family",
+            (false, false) => "",
+        };
         format!(
             "{} {}{payload} s{}",
             self.robot,
@@ -36,7 +43,13 @@ impl Job {
     /// Whether this is the run whose time series, payload evaluation and saved controller the
     /// report keeps: RWR, seed 0, no payload.
     pub fn is_reference(&self) -> bool {
-        self.variant == Variant::Rwr && self.seed == 0 && !self.payload
+        self.variant == Variant::Rwr && self.seed == 0 && !self.payload && !self.family
+    }
+
+    /// Whether this run is evaluated on E9's held-out paths: an RWR run without payload whose
+    /// seed is among the robot's E9 seeds (trained on the family or on the figure-8).
+    pub fn is_e9(&self, sizes: &Sizes) -> bool {
+        self.variant == Variant::Rwr && !self.payload && self.seed < sizes.e9.seeds(self.robot)
     }
 }
 
@@ -53,6 +66,8 @@ pub struct Trained {
     pub on_payload: Option<EvalResult>,
     /// The reference run's learner as a saved model.
     pub model: Option<SavedModel>,
+    /// E9 runs ([`Job::is_e9`]): the evaluation on each held-out path, with its label.
+    pub held_out: Option<Vec<(String, EvalResult)>>,
 }
 
 /// What a job produced: the run, or its error's message.
@@ -96,10 +111,16 @@ pub fn plan(sizes: &Sizes) -> Vec<Job> {
             variant,
             seed,
             payload,
+            family: false,
+        };
+        let family = |seed| Job {
+            family: true,
+            ..job(Variant::Rwr, seed, false)
         };
         for v in [Variant::Paper, Variant::Unweighted] {
             jobs.extend((0..sizes.ablation_seeds).map(|s| job(v, s, false)));
         }
+        jobs.extend((0..sizes.e9.seeds(robot)).map(family));
         jobs.extend((0..sizes.learned_seeds).map(|s| job(Variant::Rwr, s, false)));
         jobs.extend((0..sizes.ablation_seeds).map(|s| job(Variant::Rwr, s, true)));
         jobs.extend((0..sizes.ablation_seeds).map(|s| job(Variant::Global, s, false)));
@@ -124,8 +145,12 @@ pub fn job_setup(base: &Setup, job: &Job, sizes: &Sizes) -> Result<Setup> {
         ..TrainConfig::default()
     };
     let learner = job.variant.config(base.learner_config().clone());
-    base.clone()
-        .with_learner(learner)?
+    let base = if job.family {
+        base.clone().with_trajectory(base.family_config())?
+    } else {
+        base.clone()
+    };
+    base.with_learner(learner)?
         .with_train(train)?
         .with_eval_periods(sizes.eval_periods)
 }
@@ -155,7 +180,20 @@ pub fn run_one(
         series: None,
         on_payload: None,
         model: None,
+        held_out: None,
     };
+    if job.is_e9(sizes) {
+        let paths = crate::family::held_out(setup, sizes.e9.paths_per_kind)?;
+        let evals = (paths.iter())
+            .map(|p| {
+                Ok((
+                    crate::family::label(p),
+                    setup.evaluate_path(model, &mut learner, p)?,
+                ))
+            })
+            .collect::<Result<Vec<_>>>()?;
+        trained.held_out = Some(evals);
+    }
     if job.is_reference() {
         let mut ev = setup.evaluator(model)?;
         ev.keep_series = true;
@@ -221,14 +259,18 @@ mod tests {
     fn the_plan_has_every_job_once_longest_first() {
         let sizes = Sizes::full();
         let jobs = plan(&sizes);
-        // Per robot: 3 RWR seeds, 3 variants and 1 payload run (one ablation seed each).
-        assert_eq!(jobs.len(), 14);
+        // Per robot: 3 RWR seeds, 3 variants and 1 payload run (one ablation seed each), and
+        // the family runs of E9 (planar3 3, sarcos7 1).
+        assert_eq!(jobs.len(), 18);
+        assert_eq!(jobs.iter().filter(|j| j.family).count(), 4);
         for (i, a) in jobs.iter().enumerate() {
             assert!(!jobs[i + 1..].contains(a), "{a:?} twice");
         }
         for robot in ["sarcos7", "planar3"] {
             let rwr: Vec<u64> = (jobs.iter())
-                .filter(|j| j.robot == robot && j.variant == Variant::Rwr && !j.payload)
+                .filter(|j| {
+                    j.robot == robot && j.variant == Variant::Rwr && !j.payload && !j.family
+                })
                 .map(|j| j.seed)
                 .collect();
             assert_eq!(rwr, vec![0, 1, 2]);
@@ -237,7 +279,7 @@ mod tests {
         assert_eq!(jobs[0].robot, "sarcos7");
         assert_eq!(jobs[0].variant, Variant::Paper);
         assert_eq!(jobs[1].variant, Variant::Unweighted);
-        assert!(jobs[7..].iter().all(|j| j.robot == "planar3"));
+        assert!(jobs[8..].iter().all(|j| j.robot == "planar3"));
         assert_eq!(jobs.iter().filter(|j| j.is_reference()).count(), 2);
     }
 }

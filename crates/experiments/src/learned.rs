@@ -15,10 +15,12 @@ pub fn select<'a>(
     payload: bool,
 ) -> (Vec<&'a Trained>, Vec<String>) {
     let (mut ok, mut failed) = (Vec::new(), Vec::new());
-    for j in jobs
-        .iter()
-        .filter(|j| j.job.robot == robot && j.job.variant == variant && j.job.payload == payload)
-    {
+    for j in jobs.iter().filter(|j| {
+        j.job.robot == robot
+            && j.job.variant == variant
+            && j.job.payload == payload
+            && !j.job.family
+    }) {
         match &j.outcome {
             Ok(t) => ok.push(t),
             Err(e) => failed.push(format!("seed {}: {e}", j.job.seed)),

@@ -6,7 +6,9 @@
 pub mod adapt;
 pub mod analytical;
 mod compare;
+pub mod e9;
 mod error;
+pub mod family;
 pub mod jobs;
 pub mod learned;
 pub mod reproduce;
@@ -26,7 +28,7 @@ pub use jobs::{Job, JobResult, Observer, Quiet, Trained};
 pub use reproduce::{reproduce, FigureInputs, Reproduction};
 pub use results::Results;
 pub use setup::Setup;
-pub use sizes::{RobotSizes, Sizes};
+pub use sizes::{E9Sizes, RobotSizes, Sizes};
 
 /// The set-up of `robot` among `setups`.
 pub(crate) fn setup_of<'a>(setups: &'a [(&str, Setup)], robot: &str) -> Result<&'a Setup> {

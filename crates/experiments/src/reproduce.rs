@@ -86,6 +86,7 @@ pub fn reproduce(sizes: &Sizes, quick: bool, observer: &dyn Observer) -> Result<
         e5: r.e5,
         e6: r.e6,
         e7: r.e7,
+        e9: crate::e9::e9(&done),
         config: RunConfig {
             quick,
             sizes: sizes.clone(),
@@ -150,7 +151,7 @@ fn run_jobs(
 ) -> Vec<jobs::JobResult> {
     let plan = jobs::plan(sizes);
     observer.note(&format!(
-        "E3–E7: {} training runs (planar3 {} min, sarcos7 {} min simulated) on {} threads",
+        "E3–E7, E9: {} training runs (planar3 {} min, sarcos7 {} min simulated) on {} threads",
         plan.len(),
         sizes.planar3.minutes,
         sizes.sarcos7.minutes,

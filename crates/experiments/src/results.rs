@@ -39,6 +39,10 @@ pub struct Results {
     /// E7 (Sec. I): eq. 7 with a wrong model vs the learned controller, keyed by model error.
     #[serde(rename = "E7")]
     pub e7: ByRobot<BTreeMap<String, ModelErrorRow>>,
+    /// E9 (issue 27): controllers trained on the figure-8 only and on the family of paths,
+    /// on held-out paths ([`crate::e9`]); absent for runs without it.
+    #[serde(rename = "E9", default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub e9: ByRobot<crate::e9::E9Row>,
     /// The settings of the run.
     pub config: RunConfig,
     /// Training seeds of the learned controller (E3, E5).

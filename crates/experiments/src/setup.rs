@@ -306,7 +306,8 @@ impl Setup {
 
     /// Trains a fresh learner on a simulated `truth` robot (this set-up's simulator, its noise
     /// seeded with the training seed) from rest at home, evaluating it on the same model; the
-    /// learner sees only measurements. `observe` sees each evaluation and episode.
+    /// learner sees only measurements. `observe` sees each evaluation. With `[trajectory] kind =
+    /// "family"` each episode runs a path drawn from the family.
     ///
     /// # Errors
     /// As [`osrl_learn::train::train`].
@@ -327,15 +328,24 @@ impl Setup {
         let mut ev = self.evaluator(truth)?;
         let axes = truth.task_axes();
         let mut evaluate = |l: &mut Learner| ev.evaluate(l);
-        let summary = osrl_learn::train::train(
+        let mut observer = osrl_learn::train::OnEvaluation(observe);
+        let trainer = osrl_learn::train::Trainer::new(
             &mut sim,
             &mut learner,
             &self.traj,
             axes,
             &self.train,
             &mut evaluate,
-            observe,
+            &mut observer,
         )?;
+        // A family: one drawn path per episode, seeded with the training seed
+        // (`crate::family`); evaluations stay on the base figure-8.
+        let summary = if self.trajectory.kind == osrl_control::TrajectoryKind::Family {
+            let mut paths = crate::family::FamilySource(self.family_sampler(self.train.seed)?);
+            trainer.with_paths(&mut paths).run()?
+        } else {
+            trainer.run()?
+        };
         Ok((learner, summary))
     }
 

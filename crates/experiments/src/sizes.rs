@@ -36,6 +36,32 @@ pub struct Sizes {
     pub planar3: RobotSizes,
     /// Training sizes of the 7-DOF SARCOS arm.
     pub sarcos7: RobotSizes,
+    /// The generalisation experiment (E9).
+    #[serde(default)]
+    pub e9: E9Sizes,
+}
+
+/// Sizes of E9: family-trained controllers (and the figure-8-only ones of the same seeds, E3's)
+/// evaluated on held-out paths. Default: none (E9 off).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct E9Sizes {
+    /// Seeds trained on the family (and evaluated on the held-out paths) per robot: planar3's
+    /// and sarcos7's, at most `learned_seeds`.
+    pub planar3_seeds: u64,
+    pub sarcos7_seeds: u64,
+    /// Held-out paths per kind (figure-8, circle, minimum-jerk).
+    pub paths_per_kind: usize,
+}
+
+impl E9Sizes {
+    /// The E9 seeds of a robot by name.
+    pub fn seeds(&self, robot: &str) -> u64 {
+        if robot == "sarcos7" {
+            self.sarcos7_seeds
+        } else {
+            self.planar3_seeds
+        }
+    }
 }
 
 impl Sizes {
@@ -60,6 +86,11 @@ impl Sizes {
                 babble_minutes: None,
                 eval_every_minutes: 4.0,
             },
+            e9: E9Sizes {
+                planar3_seeds: 3,
+                sarcos7_seeds: 1,
+                paths_per_kind: 2,
+            },
         }
     }
 
@@ -82,6 +113,11 @@ impl Sizes {
                 minutes: 8.0,
                 babble_minutes: None,
                 eval_every_minutes: 1.0,
+            },
+            e9: E9Sizes {
+                planar3_seeds: 1,
+                sarcos7_seeds: 0,
+                paths_per_kind: 1,
             },
         }
     }

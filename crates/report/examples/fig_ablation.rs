@@ -48,6 +48,7 @@ fn main() -> Res<()> {
             series: None,
             on_payload: None,
             model: None,
+            held_out: None,
         };
         plotted.push((v.label().to_string(), learned::curves(&[&run])));
     }

@@ -34,6 +34,7 @@ fn main() -> Res<()> {
             series: None,
             on_payload: None,
             model: None,
+            held_out: None,
         });
     }
     let c = learned::curves(&runs.iter().collect::<Vec<_>>());

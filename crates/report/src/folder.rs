@@ -187,6 +187,10 @@ pub fn render(out: &Path, page: &Page) -> Result<()> {
     figs.extend(path_figures(out, page, &setups)?);
     figs.extend(learned_figures(out, page, &setups)?);
     figs.extend(ablation_figures(out, page)?);
+    figs.extend(
+        (crate::family::figures(out, &page.results)?.into_iter())
+            .map(|(file, caption)| Fig { file, caption }),
+    );
     write(
         &out.join("index.html"),
         &page::html(out, &page.results, &figs)?,

@@ -2,6 +2,7 @@
 
 pub mod csv;
 mod error;
+mod family;
 pub mod figures;
 pub mod folder;
 pub mod page;

@@ -1,7 +1,7 @@
 //! The page drawn again from a report folder's data (`osrl report --from`) is the page of the
 //! run, byte for byte: every experiment at a tiny size, written, read back, drawn again.
 
-use osrl_experiments::{reproduce, Quiet, RobotSizes, Sizes};
+use osrl_experiments::{reproduce, E9Sizes, Quiet, RobotSizes, Sizes};
 use osrl_report::{render, write_report, Page};
 use std::path::Path;
 
@@ -21,6 +21,12 @@ fn tiny() -> Sizes {
         arm_instants: 3,
         planar3: robot.clone(),
         sarcos7: robot,
+        // E9 on planar3 (its table and figure are drawn again too).
+        e9: E9Sizes {
+            planar3_seeds: 1,
+            sarcos7_seeds: 0,
+            paths_per_kind: 1,
+        },
     }
 }
 

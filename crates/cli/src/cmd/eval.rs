@@ -4,8 +4,11 @@
 //! With `--out DIR`: `eval.csv`, `path.svg/png`, `commands.svg/png` (learned vs analytical per
 //! joint over the last cycle, paper Fig. 2c) and `metrics.json`.
 
+use crate::config::Config;
 use crate::util::{print_json, trajectory_kind};
 use anyhow::{bail, Context, Result};
+use osrl_control::family::Region;
+use osrl_control::{TrajectoryConfig, TrajectoryKind};
 use osrl_experiments::stats::{measured, EvalSummary};
 use osrl_experiments::Setup;
 use osrl_learn::SavedModel;
@@ -20,6 +23,11 @@ pub struct Args {
     /// Trajectory: `figure8`, `circle` or `min_jerk` (default: the training trajectory).
     #[arg(long, value_parser = ["figure8", "circle", "min_jerk"])]
     pub trajectory: Option<String>,
+    /// TOML file with a `[trajectory]` section: the path to evaluate on (any described path;
+    /// unset fields take the robot's defaults; `--trajectory` overrides its kind). No other
+    /// section is accepted.
+    #[arg(long)]
+    pub config: Option<PathBuf>,
     /// Simulated seconds, rounded down to whole periods; the first period is the warm-up
     /// (default: 3 periods, 12 s on the default figure-8).
     #[arg(long)]
@@ -32,6 +40,36 @@ pub struct Args {
     pub json: bool,
 }
 
+/// A path farther than this outside the trained region (m) is reported on stderr.
+const REGION_TOLERANCE: f64 = 1e-3;
+
+/// Below this `support_share` an evaluation warns on stderr.
+const LOW_SUPPORT: f64 = 0.9;
+
+/// The `[trajectory]` section of `file`; any other section is refused.
+fn trajectory_section(file: &std::path::Path) -> Result<TrajectoryConfig> {
+    let (cfg, sections) = Config::load_with_sections(Some(file))?;
+    if let Some(other) = sections.iter().find(|s| *s != "trajectory") {
+        bail!(
+            "{}: [{other}] has no meaning for `osrl eval` (the model brings its robot, learner \
+             and training settings): keep only [trajectory]",
+            file.display()
+        );
+    }
+    if cfg.trajectory.kind == TrajectoryKind::Family {
+        bail!(
+            "{}: [trajectory] kind = \"family\" is not one path: describe the path to evaluate",
+            file.display()
+        );
+    }
+    Ok(cfg.trajectory)
+}
+
+/// Whether the saved model was trained on a family of paths.
+fn setup_trained_on_family(saved: &SavedModel) -> bool {
+    saved.info().trajectory.kind == TrajectoryKind::Family
+}
+
 /// Evaluates, prints, writes.
 pub fn run(a: Args) -> Result<()> {
     let saved = SavedModel::load(&a.model)?;
@@ -39,10 +77,38 @@ pub fn run(a: Args) -> Result<()> {
         crate::util::check_out_dir("--out", dir, &osrl_report::runs::EVAL_FILES)?;
     }
     let mut setup = Setup::from_saved(&saved)?;
-    if let Some(t) = &a.trajectory {
-        let mut cfg = setup.trajectory_config().clone();
-        cfg.kind = trajectory_kind(t);
-        setup = setup.with_trajectory(cfg)?;
+    // Where training went: the trained path's or family's region.
+    let trained = Region::of(setup.model(), setup.trajectory_config())?;
+    if a.trajectory.is_some() || a.config.is_some() {
+        let mut cfg = match &a.config {
+            Some(file) => trajectory_section(file)?,
+            None => setup.trajectory_config().clone(),
+        };
+        if let Some(t) = &a.trajectory {
+            cfg.kind = trajectory_kind(t);
+        }
+        setup = setup
+            .with_trajectory(cfg)
+            .context("the evaluated trajectory")?;
+    }
+    let leaves = trained.leaves_by(setup.trajectory());
+    if leaves > REGION_TOLERANCE {
+        eprintln!(
+            "warning: the evaluated path leaves the region the model was trained on by up to \
+             {:.1} mm (the {} region: ±{:.3} m × ±{:.3} m around ({:.3}, {:.3}, {:.3}) m in \
+             its plane); see support_share",
+            leaves * 1e3,
+            if setup_trained_on_family(&saved) {
+                "family's"
+            } else {
+                "training path's"
+            },
+            trained.half[0],
+            trained.half[1],
+            trained.centre[0],
+            trained.centre[1],
+            trained.centre[2]
+        );
     }
     let period = setup.trajectory().period();
     let dt = setup.sim().control_period;
@@ -81,6 +147,8 @@ pub fn run(a: Args) -> Result<()> {
         ("counters", serde_json::to_value(learner.stats())?),
         ("command_us_median", us50.into()),
         ("command_us_p99", us99.into()),
+        ("support_share", res.support_share.into()),
+        ("leaves_trained_region_mm", (1e3 * leaves).into()),
     ] {
         o.insert(k.into(), v);
     }
@@ -96,6 +164,17 @@ pub fn run(a: Args) -> Result<()> {
         println!("learned command: {a:.2} µs median, {b:.2} µs 99th percentile (wall time)");
     }
     print_metrics(&res);
+    println!(
+        "support share {:.3} (steps inside trained receptive fields)",
+        res.support_share
+    );
+    if res.support_share < LOW_SUPPORT {
+        eprintln!(
+            "warning: only {:.1} % of the evaluation ran inside trained receptive fields: the \
+             path leaves what the controller was trained on",
+            100.0 * res.support_share
+        );
+    }
     if let Some(dir) = &a.out {
         let title = format!(
             "{}: learned vs analytical commands over one cycle",

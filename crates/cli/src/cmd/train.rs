@@ -35,8 +35,10 @@ pub struct Args {
     pub robot: Option<String>,
     #[command(flatten)]
     pub profile: ProfileArgs,
-    /// Trajectory: `figure8`, `circle` or `min_jerk` (default: the config's, figure8).
-    #[arg(long, value_parser = ["figure8", "circle", "min_jerk"])]
+    /// Trajectory: `figure8`, `circle`, `min_jerk`, or `family` (one path per episode drawn
+    /// from the family of `[trajectory.family]`, `docs/family.md`) (default: the config's,
+    /// figure8).
+    #[arg(long, value_parser = ["figure8", "circle", "min_jerk", "family"])]
     pub trajectory: Option<String>,
     /// TOML config file with `[trajectory]`, `[sim]`, `[learner]` and `[train]` sections (see
     /// `config.rs`).

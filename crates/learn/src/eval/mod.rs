@@ -29,7 +29,8 @@ pub struct Evaluator {
     traj: Trajectory,
     home: Vec<f64>,
     gains: TaskGains,
-    /// Simulated seconds per evaluation (whole periods; the first is warm-up).
+    /// Simulated seconds per evaluation (the path's approach, if any, then whole periods; the
+    /// approach and the first period are the warm-up).
     pub seconds: f64,
     /// Keep the last run's time series.
     pub keep_series: bool,
@@ -61,7 +62,7 @@ impl Evaluator {
                 ..sim_cfg
             },
         )?;
-        let seconds = traj.period() * (periods.max(1) as f64 + 1.0);
+        let seconds = traj.lead() + traj.period() * (periods.max(1) as f64 + 1.0);
         osrl_control::run_steps(seconds, sim.control_period()).map_err(|e| {
             osrl_control::ControlError::InvalidConfig(format!("{periods} evaluated periods: {e}"))
         })?;
@@ -101,7 +102,9 @@ impl Evaluator {
             seconds: 0.0,
             error: None,
         };
-        let mut obs = Comparison::new(&mut self.osc, axes, n, m, self.traj.steps_per_period(dt));
+        // The warm-up: the approach (if any) and the first period.
+        let warm = self.traj.steps_per_period(dt) + (self.traj.lead() / dt).round() as usize;
+        let mut obs = Comparison::new(&mut self.osc, axes, n, m, warm);
         obs.series = self.keep_series.then(EvalSeries::default);
         let ended = drive(&mut self.sim, &mut ctrl, &self.traj, steps, &mut obs);
         if let Some(e) = ctrl.error.take().or_else(|| obs.error.take()) {
@@ -275,10 +278,10 @@ impl Comparison<'_> {
     }
 
     /// Adds one step to the window (from step `warm` on) and to the whole run.
-    fn accumulate(&mut self, k: usize, e: f64, fallback: bool, u: &[f64], split: &Split) {
+    fn accumulate(&mut self, k: usize, e: f64, source: (bool, bool), u: &[f64], split: &Split) {
         for (acc, on) in [(&mut self.window, k >= self.warm), (&mut self.all, true)] {
             if on {
-                acc.add(e, fallback, u, &self.u_star, &self.u0);
+                acc.add(e, source, u, &self.u_star, &self.u0);
                 acc.null2 += split.null2;
                 acc.nom2 += split.nom2;
                 acc.nom_null2 += split.nom_null2;
@@ -314,8 +317,11 @@ impl StepObserver<EvalController<'_>> for Comparison<'_> {
         self.prev_u.copy_from_slice(u);
         self.prev_us.copy_from_slice(&self.u_star);
         self.record(step, ctrl.seconds);
-        let fallback = ctrl.source == CommandSource::Fallback;
-        self.accumulate(step.k, e, fallback, u, &split);
+        let source = (
+            ctrl.source == CommandSource::Fallback,
+            ctrl.source == CommandSource::Learned,
+        );
+        self.accumulate(step.k, e, source, u, &split);
         Ok(if e > 0.2 {
             ControlFlow::Break(())
         } else {

@@ -36,6 +36,11 @@ pub struct EvalResult {
     pub u_star_cost: f64,
     /// Share of steps where no trained local controller was active (fallback to `u0`).
     pub fallback_share: f64,
+    /// Share of steps inside trained receptive fields: the command was the blend of trained
+    /// local controllers whose confidence-weighted activation `S = Σ c_i w_i` reached
+    /// `controllers.prior_weight` (`CommandSource::Learned`), not an extrapolation or `u0`.
+    #[serde(default)]
+    pub support_share: f64,
     /// Largest change of the command between consecutive steps (N·m), learned and analytical.
     pub max_command_step: f64,
     pub max_command_step_analytical: f64,

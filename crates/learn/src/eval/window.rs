@@ -16,6 +16,7 @@ pub(super) struct Acc {
     pub gain_err: f64,
     pub gain_count: usize,
     fall: usize,
+    learned: usize,
     s1: Vec<f64>,
     s2: Vec<f64>,
 }
@@ -35,13 +36,24 @@ impl Acc {
             gain_err: 0.0,
             gain_count: 0,
             fall: 0,
+            learned: 0,
             s1: vec![0.0; n],
             s2: vec![0.0; n],
         }
     }
 
-    pub fn add(&mut self, e: f64, fallback: bool, u: &[f64], u_star: &[f64], u0: &[f64]) {
+    /// One step: task error `e` (m), whether the command fell back to `u0` or came from the
+    /// trained fields (`learned`), the learned, optimal and nominal commands.
+    pub fn add(
+        &mut self,
+        e: f64,
+        (fallback, learned): (bool, bool),
+        u: &[f64],
+        u_star: &[f64],
+        u0: &[f64],
+    ) {
         self.count += 1;
+        self.learned += learned as usize;
         self.e2 += e * e;
         self.emax = self.emax.max(e);
         self.fall += fallback as usize;
@@ -72,6 +84,7 @@ impl Acc {
             u_star_cost: self.c_s / c,
             gain_error: self.gain_err / self.gain_count.max(1) as f64,
             fallback_share: self.fall as f64 / c,
+            support_share: self.learned as f64 / c,
             max_command_step: step_l,
             max_command_step_analytical: step_a,
             diverged,
@@ -87,8 +100,8 @@ mod tests {
     #[test]
     fn window_metrics_follow_their_definitions() {
         let mut acc = Acc::new(2);
-        acc.add(0.003, false, &[1.0, 2.0], &[1.5, 2.0], &[0.0, 0.0]);
-        acc.add(0.004, true, &[3.0, 1.0], &[2.5, 1.0], &[1.0, 0.0]);
+        acc.add(0.003, (false, true), &[1.0, 2.0], &[1.5, 2.0], &[0.0, 0.0]);
+        acc.add(0.004, (true, false), &[3.0, 1.0], &[2.5, 1.0], &[1.0, 0.0]);
         let r = acc.result(0.7, 0.2, false);
         assert!((r.tracking_rms_mm - (12.5f64).sqrt()).abs() < 1e-12);
         assert!((r.tracking_max_mm - 4.0).abs() < 1e-12);
@@ -96,7 +109,7 @@ mod tests {
         assert!((r.command_nmse - 0.5).abs() < 1e-12, "{}", r.command_nmse);
         // Σ ‖u − u0‖² = 5 + 5 over Σ ‖u* − u0‖² = 6.25 + 3.25.
         assert!((r.command_cost_ratio - 10.0 / 9.5).abs() < 1e-12);
-        assert_eq!(r.fallback_share, 0.5);
+        assert_eq!((r.fallback_share, r.support_share), (0.5, 0.5));
         assert_eq!(
             (r.max_command_step, r.max_command_step_analytical),
             (0.7, 0.2)

@@ -12,12 +12,14 @@ mod curriculum;
 mod home;
 mod observer;
 mod on_policy;
+mod paths;
 mod safety;
 mod trainer;
 
 pub use config::{BabbleConfig, TrainConfig};
 pub use curriculum::CurriculumConfig;
 pub use observer::{EpisodeReport, Observer, OnEvaluation, Phase, Progress};
+pub use paths::PathSource;
 pub use safety::{StepPoint, STEP_BIN_SECONDS};
 pub use trainer::{Evaluate, TrainSummary, Trainer};
 

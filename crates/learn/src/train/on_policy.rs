@@ -38,9 +38,16 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
     fn episode(&mut self) -> Result<()> {
         self.learning = self.cfg.learn_on_policy;
         self.progress.episodes += 1;
+        self.next_path()?;
         let stage = self.curriculum.current();
         let (cfg, rng) = (self.cfg, &mut self.rng);
-        let path = EpisodePath::new(self.traj, stage, cfg.episode_seconds, &cfg.curriculum, rng);
+        let path = EpisodePath::new(
+            &self.episode_path,
+            stage,
+            cfg.episode_seconds,
+            &cfg.curriculum,
+            rng,
+        );
         // The fade from the PD hold takes the switch; the learner's own limiter starts afresh.
         self.learner.start_episode(None);
         let first = self.progress.episodes == 1;
@@ -97,7 +104,7 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
     /// One control period on `path` at episode time `t`: eq. 2's reference, the learned command
     /// with exploration, the step; returns the task error after it (m).
     fn track(&mut self, path: &EpisodePath, t: f64, xdd_ref: &mut [f64]) -> Result<f64> {
-        let target = path.sample(self.traj, t);
+        let target = path.sample(&self.episode_path, t);
         let prev = &self.prev;
         let (x, xd) = (prev.x.as_slice(), prev.xd.as_slice());
         reference_acceleration(&self.cfg.gains, &target, self.axes, x, xd, xdd_ref);
@@ -105,7 +112,7 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
         let (q, qd) = (prev.q.as_slice(), prev.qd.as_slice());
         self.learner.command(q, qd, xdd_ref, rng, &mut self.u)?;
         self.step()?;
-        let after = path.sample(self.traj, t + self.dt);
+        let after = path.sample(&self.episode_path, t + self.dt);
         Ok(task_error(&after, self.axes, self.prev.x.as_slice()))
     }
 }

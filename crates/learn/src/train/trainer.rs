@@ -4,6 +4,7 @@
 
 use super::curriculum::Curriculum;
 use super::observer::{Observer, Phase, Progress};
+use super::paths::{check_start, PathSource};
 use super::safety::{StepMonitor, StepPoint};
 use super::TrainConfig;
 use crate::error::{LearnError, Result};
@@ -53,6 +54,9 @@ pub struct TrainSummary {
     /// within `home_hold_seconds` (`home_tolerance`).
     #[serde(default)]
     pub unsettled_starts: u64,
+    /// Episode paths drawn from a path source (0 when every episode ran the task path).
+    #[serde(default)]
+    pub paths_drawn: u64,
 }
 
 impl TrainSummary {
@@ -79,6 +83,10 @@ pub struct Trainer<'a, R: Robot + ?Sized> {
     pub(super) robot: &'a mut R,
     pub(super) learner: &'a mut Learner,
     pub(super) traj: &'a Trajectory,
+    /// The source of the episodes' paths (`None`: every episode runs `traj`) and the current
+    /// episode's path.
+    paths: Option<&'a mut dyn PathSource>,
+    pub(super) episode_path: Trajectory,
     pub(super) axes: &'a [usize],
     pub(super) cfg: &'a TrainConfig,
     evaluate: &'a mut Evaluate<'a>,
@@ -126,6 +134,8 @@ pub struct Trainer<'a, R: Robot + ?Sized> {
     fade_from: Vec<f64>,
     fade_left: u64,
     fade_len: u64,
+    /// Paths drawn from the source.
+    paths_drawn: u64,
     wall: Instant,
 }
 
@@ -169,6 +179,8 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
             robot,
             learner,
             traj,
+            paths: None,
+            episode_path: traj.clone(),
             axes,
             cfg,
             evaluate,
@@ -200,8 +212,27 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
             fade_from: vec![0.0; n],
             fade_left: 0,
             fade_len: 1,
+            paths_drawn: 0,
             wall,
         })
+    }
+
+    /// This run with one path per on-policy episode drawn from `paths` (each starting where
+    /// `traj` starts) instead of `traj` every time; evaluations are the caller's as before.
+    pub fn with_paths(mut self, paths: &'a mut dyn PathSource) -> Self {
+        self.paths = Some(paths);
+        self
+    }
+
+    /// The next episode's path into `episode_path` (a new one from the source, if any).
+    pub(super) fn next_path(&mut self) -> Result<()> {
+        if let Some(src) = self.paths.as_mut() {
+            let p = src.next_path()?;
+            check_start(&p, self.traj, self.axes)?;
+            self.episode_path = p;
+            self.paths_drawn += 1;
+        }
+        Ok(())
     }
 
     /// The run: babbling, on-policy learning, the final evaluation.
@@ -341,6 +372,7 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
             stats: self.learner.stats(),
             n_local_models: self.learner.n_local_models(),
             unsettled_starts: self.unsettled_starts,
+            paths_drawn: self.paths_drawn,
         }
     }
 }

@@ -1,0 +1,68 @@
+//! E9 on saved models: evaluates a figure-8-only and a family-trained controller (`osrl train
+//! --trajectory figure8|family`) on the held-out paths of the robot's family as E9 does (from
+//! rest at home, behind the approach to each path's start), against issue 27's bounds
+//! (`docs/family.md`):
+//!
+//! ```sh
+//! cargo run --release -p osrl-cli --example e9_models -- 2 figure8.osrl family.osrl
+//! ```
+
+use anyhow::{bail, Context, Result};
+use osrl_experiments::e9::{within_bounds, E9Point};
+use osrl_experiments::family::{held_out, label};
+use osrl_experiments::Setup;
+use osrl_learn::SavedModel;
+
+fn point(e: &osrl_learn::eval::EvalResult) -> E9Point {
+    E9Point {
+        seed: 0,
+        tracking_rms_mm: e.tracking_rms_mm,
+        command_nmse: e.command_nmse,
+        support_share: e.support_share,
+        diverged: e.diverged,
+    }
+}
+
+fn main() -> Result<()> {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let [per_kind, f8, fam] = args.as_slice() else {
+        bail!("usage: e9_models PATHS_PER_KIND FIGURE8_MODEL FAMILY_MODEL");
+    };
+    let per_kind: usize = per_kind
+        .parse()
+        .ok()
+        .filter(|n| (1..=20).contains(n))
+        .context("PATHS_PER_KIND: a whole number from 1 to 20")?;
+    let mut runs = Vec::new();
+    for file in [f8, fam] {
+        let saved = SavedModel::load(std::path::Path::new(file))?;
+        let setup = Setup::from_saved(&saved)?;
+        let (_, mut learner, model) = saved.into_parts();
+        let own = setup.evaluator(&model)?.evaluate(&mut learner)?;
+        let mut rows = vec![("default figure-8".to_string(), point(&own))];
+        for p in held_out(&setup, per_kind)? {
+            let e = setup.evaluate_path(&model, &mut learner, &p)?;
+            rows.push((label(&p), point(&e)));
+        }
+        runs.push(rows);
+    }
+    let own = &runs[0][0].1;
+    println!(
+        "bounds: tracking <= {:.3} mm, nMSE <= {:.4}",
+        (1.5 * own.tracking_rms_mm).min(1.0),
+        (2.0 * own.command_nmse).min(0.05)
+    );
+    for ((name, a), (_, b)) in runs[0].iter().zip(&runs[1]) {
+        println!(
+            "{name:48} figure-8 only {:8.3} mm {:.4} support {:.2} | family {:8.3} mm {:.4} support {:.2} {}",
+            a.tracking_rms_mm,
+            a.command_nmse,
+            a.support_share,
+            b.tracking_rms_mm,
+            b.command_nmse,
+            b.support_share,
+            if within_bounds(b, own) { "within" } else { "outside" }
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,129 @@
+//! A family of task-space paths over a region of the workspace (`docs/family.md`): its settings
+//! ([`FamilyConfig`], the `[trajectory.family]` section), the region ([`Region`]) and the seeded
+//! sampler that draws reachable paths inside the joint and torque limits ([`FamilySampler`]).
+
+mod region;
+mod sampler;
+
+pub(crate) use region::orthonormal;
+pub use region::Region;
+pub use sampler::{FamilyPath, FamilySampler};
+
+use crate::error::{ControlError, Result};
+use crate::trajectory_config::TrajectoryKind;
+use serde::{Deserialize, Serialize};
+
+/// How a family of paths is drawn (`[trajectory.family]`, used when `[trajectory] kind =
+/// "family"`). Every path lies in the plane `e1`–`e2` of the `[trajectory]` section, inside the
+/// region around its centre; the figure-8 of that section (the robot's default one unless set)
+/// is the family's base: home sits on its start and every path is approached from there.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct FamilyConfig {
+    /// The region is the box around the base figure-8 (half-extents `a`, `b` along `e1`, `e2`)
+    /// grown by this fraction. Default 0.5: half as large again as the path the paper trained
+    /// on, so the family covers its neighbourhood without reaching for the joint limits.
+    pub growth: f64,
+    /// The region's half-extents along `e1` and `e2` (m), instead of the grown box. Default
+    /// unset.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub half_size: Option<[f64; 2]>,
+    /// The kinds drawn, each equally often. Default `["figure8", "circle", "min_jerk"]`: the
+    /// paths an operational-space user commands.
+    pub kinds: Vec<TrajectoryKind>,
+    /// Size of a figure-8 (`a`, `b`) or circle (radius) as a fraction of the region's
+    /// half-extents (the circle: of the smaller one), drawn uniformly in this range. Default
+    /// [0.3, 0.8]: from a third of the region to nearly all of it.
+    pub size: [f64; 2],
+    /// Period of a figure-8 or circle (s), drawn uniformly. Default [3, 6] (the base: 4).
+    pub period: [f64; 2],
+    /// Duration of each minimum-jerk move (s), drawn uniformly. Default [0.8, 1.6].
+    pub move_time: [f64; 2],
+    /// Points of a minimum-jerk path, drawn uniformly in this range (inclusive). Default [2, 4].
+    pub points: [usize; 2],
+    /// A drawn path's peak task acceleration may be at most this times the base figure-8's
+    /// (m/s²). Default 1: the family is as fast as the task the controller is known to learn.
+    pub max_acceleration_ratio: f64,
+    /// Peak speed of the minimum-jerk approach from home to a path's start (m/s; at least 1 s
+    /// long). Default 0.15: slower than the base figure-8 (peak 0.39 m/s on planar3).
+    pub approach_speed: f64,
+    /// Eq. 7 with the true model, run along the approached path from home, may need at most
+    /// this share of each joint's torque limit. Default 0.8: headroom for exploration and for
+    /// the learned controller's errors.
+    pub torque_share: f64,
+    /// Draws per path before the sampler gives up (an error naming the last rejection). Default
+    /// 500.
+    pub max_draws: usize,
+}
+
+impl Default for FamilyConfig {
+    fn default() -> Self {
+        Self {
+            growth: 0.5,
+            half_size: None,
+            kinds: vec![
+                TrajectoryKind::Figure8,
+                TrajectoryKind::Circle,
+                TrajectoryKind::MinJerk,
+            ],
+            size: [0.3, 0.8],
+            period: [3.0, 6.0],
+            move_time: [0.8, 1.6],
+            points: [2, 4],
+            max_acceleration_ratio: 1.0,
+            approach_speed: 0.15,
+            torque_share: 0.8,
+            max_draws: 500,
+        }
+    }
+}
+
+impl FamilyConfig {
+    /// Whether every field has its default (the section is then not written).
+    pub fn is_default(&self) -> bool {
+        *self == Self::default()
+    }
+
+    /// Checks every field's range.
+    ///
+    /// # Errors
+    /// [`ControlError::InvalidConfig`] naming the first field out of range.
+    pub fn validate(&self) -> Result<()> {
+        let pos = |x: f64| x > 0.0 && x.is_finite();
+        let range = |r: [f64; 2]| pos(r[0]) && r[0] <= r[1] && r[1].is_finite();
+        let checks = [
+            ("growth", self.growth >= 0.0 && self.growth.is_finite()),
+            (
+                "half_size",
+                self.half_size.is_none_or(|h| pos(h[0]) && pos(h[1])),
+            ),
+            (
+                "kinds",
+                !self.kinds.is_empty() && !self.kinds.contains(&TrajectoryKind::Family),
+            ),
+            ("size", range(self.size) && self.size[1] <= 1.0),
+            ("period", range(self.period)),
+            ("move_time", range(self.move_time)),
+            (
+                "points",
+                self.points[0] >= 2 && self.points[0] <= self.points[1] && self.points[1] <= 16,
+            ),
+            ("max_acceleration_ratio", pos(self.max_acceleration_ratio)),
+            ("approach_speed", pos(self.approach_speed)),
+            (
+                "torque_share",
+                pos(self.torque_share) && self.torque_share <= 1.0,
+            ),
+            (
+                "max_draws",
+                self.max_draws >= 1 && self.max_draws <= 100_000,
+            ),
+        ];
+        match checks.iter().find(|(_, ok)| !ok) {
+            Some((what, _)) => Err(ControlError::InvalidConfig(format!(
+                "[trajectory.family] {what} is out of range: {self:?}"
+            ))),
+            None => Ok(()),
+        }
+    }
+}
