@@ -196,44 +196,20 @@ impl FromStr for RobotChange {
     /// keys, malformed numbers and out-of-range values are refused.
     fn from_str(spec: &str) -> Result<Self> {
         let err = |reason: String| spec_error(spec, reason);
+        let v = crate::spec::parse(spec).map_err(err)?;
         let mut c = RobotChange::default();
-        let spec_t = spec.trim();
-        if spec_t.is_empty() || spec_t == "none" {
-            return Ok(c);
-        }
-        for part in spec_t.split(',') {
-            let (k, v) = part
-                .split_once('=')
-                .ok_or_else(|| err(format!("'{part}' is not key=value")))?;
-            let (k, v) = (k.trim(), v.trim());
-            let num = || {
-                v.parse::<f64>()
-                    .map_err(|_| err(format!("{k}: '{v}' is not a number")))
+        c.mass_scale = v.mass.unwrap_or(c.mass_scale);
+        c.com_shift = v.com.unwrap_or(c.com_shift);
+        c.payload = v.payload.unwrap_or(c.payload);
+        c.seed = v.seed.unwrap_or(c.seed);
+        if let Some(f) = v.friction {
+            c.friction_scale = match f {
+                "on" | "true" => 1.0,
+                "off" | "false" => 0.0,
+                _ => f
+                    .parse::<f64>()
+                    .map_err(|_| err(format!("friction: '{f}' is not on, off or a factor")))?,
             };
-            match k {
-                "mass" => c.mass_scale = num()?,
-                "com" => c.com_shift = num()?,
-                "payload" => c.payload = num()?,
-                "seed" => {
-                    c.seed = v
-                        .parse()
-                        .map_err(|_| err(format!("seed: '{v}' is not an integer")))?
-                }
-                "friction" => {
-                    c.friction_scale = match v {
-                        "on" | "true" => 1.0,
-                        "off" | "false" => 0.0,
-                        _ => v.parse::<f64>().map_err(|_| {
-                            err(format!("friction: '{v}' is not on, off or a factor"))
-                        })?,
-                    }
-                }
-                _ => {
-                    return Err(err(format!(
-                        "unknown key '{k}' (keys: mass, com, friction, payload, seed)"
-                    )))
-                }
-            }
         }
         c.validate().map_err(|e| match e {
             ControlError::ChangeSpec { reason, .. } => err(reason),

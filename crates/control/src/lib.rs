@@ -36,6 +36,7 @@ mod osc;
 pub mod profile;
 mod reference;
 mod settle;
+mod spec;
 mod trajectory;
 mod trajectory_config;
 mod warp;

@@ -131,42 +131,18 @@ impl FromStr for ModelError {
             spec: spec.to_string(),
             reason,
         };
+        let v = crate::spec::parse(spec).map_err(err)?;
         let mut me = ModelError::default();
-        let spec_t = spec.trim();
-        if spec_t.is_empty() || spec_t == "none" {
-            return Ok(me);
-        }
-        for part in spec_t.split(',') {
-            let (k, v) = part
-                .split_once('=')
-                .ok_or_else(|| err(format!("'{part}' is not key=value")))?;
-            let (k, v) = (k.trim(), v.trim());
-            let num = || {
-                v.parse::<f64>()
-                    .map_err(|_| err(format!("{k}: '{v}' is not a number")))
+        me.mass_scale = v.mass.unwrap_or(me.mass_scale);
+        me.com_shift = v.com.unwrap_or(me.com_shift);
+        me.payload = v.payload.unwrap_or(me.payload);
+        me.seed = v.seed.unwrap_or(me.seed);
+        if let Some(f) = v.friction {
+            me.friction = match f {
+                "on" | "true" => true,
+                "off" | "false" => false,
+                _ => return Err(err(format!("friction: '{f}' is not on/off"))),
             };
-            match k {
-                "mass" => me.mass_scale = num()?,
-                "com" => me.com_shift = num()?,
-                "payload" => me.payload = num()?,
-                "seed" => {
-                    me.seed = v
-                        .parse()
-                        .map_err(|_| err(format!("seed: '{v}' is not an integer")))?
-                }
-                "friction" => {
-                    me.friction = match v {
-                        "on" | "true" => true,
-                        "off" | "false" => false,
-                        _ => return Err(err(format!("friction: '{v}' is not on/off"))),
-                    }
-                }
-                _ => {
-                    return Err(err(format!(
-                        "unknown key '{k}' (keys: mass, com, friction, payload, seed)"
-                    )))
-                }
-            }
         }
         me.validate().map_err(|e| match e {
             ControlError::ModelErrorSpec { reason, .. } => err(reason),
