@@ -13,6 +13,8 @@ mod home;
 mod observer;
 mod on_policy;
 mod paths;
+#[cfg(test)]
+mod paths_tests;
 mod safety;
 mod trainer;
 
