@@ -6,6 +6,7 @@
 pub mod adapt;
 pub mod analytical;
 mod compare;
+pub mod e8;
 mod error;
 pub mod jobs;
 pub mod learned;
@@ -26,7 +27,7 @@ pub use jobs::{Job, JobResult, Observer, Quiet, Trained};
 pub use reproduce::{reproduce, FigureInputs, Reproduction};
 pub use results::Results;
 pub use setup::Setup;
-pub use sizes::{RobotSizes, Sizes};
+pub use sizes::{ChangeSizes, RobotSizes, Sizes};
 
 /// The set-up of `robot` among `setups`.
 pub(crate) fn setup_of<'a>(setups: &'a [(&str, Setup)], robot: &str) -> Result<&'a Setup> {

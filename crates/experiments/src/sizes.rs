@@ -36,6 +36,45 @@ pub struct Sizes {
     pub planar3: RobotSizes,
     /// Training sizes of the 7-DOF SARCOS arm.
     pub sarcos7: RobotSizes,
+    /// The timeline of E8 (absent in files written before E8: the quick size's).
+    #[serde(default = "ChangeSizes::quick")]
+    pub e8: ChangeSizes,
+}
+
+/// The timeline of E8 (a controller trained on the unchanged arm keeps tracking while the robot
+/// changes): simulated minutes.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ChangeSizes {
+    /// Tracking on the unchanged arm before the change.
+    pub nominal_minutes: f64,
+    /// With the change (the payload is removed after them; masses and friction stay changed).
+    pub changed_minutes: f64,
+    /// After the payload is removed.
+    pub after_minutes: f64,
+    /// Evaluate every this many simulated minutes (issue 26: at least 4 points a minute).
+    pub eval_every_minutes: f64,
+}
+
+impl ChangeSizes {
+    /// The full run: the issue's 10 minutes of adaptation, 3 after the removal.
+    pub fn full() -> Self {
+        Self {
+            nominal_minutes: 1.0,
+            changed_minutes: 10.0,
+            after_minutes: 3.0,
+            eval_every_minutes: 0.25,
+        }
+    }
+
+    /// `--quick`: half a minute nominal, 1.5 with the change, 1 after.
+    pub fn quick() -> Self {
+        Self {
+            nominal_minutes: 0.5,
+            changed_minutes: 1.5,
+            after_minutes: 1.0,
+            eval_every_minutes: 0.25,
+        }
+    }
 }
 
 impl Sizes {
@@ -60,6 +99,7 @@ impl Sizes {
                 babble_minutes: None,
                 eval_every_minutes: 4.0,
             },
+            e8: ChangeSizes::full(),
         }
     }
 
@@ -83,6 +123,7 @@ impl Sizes {
                 babble_minutes: None,
                 eval_every_minutes: 1.0,
             },
+            e8: ChangeSizes::quick(),
         }
     }
 
