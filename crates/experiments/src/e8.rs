@@ -383,7 +383,6 @@ mod tests {
             .unwrap();
         let (learner, _) = setup.train(setup.model(), &mut |_| {}).unwrap();
         let mut sizes = Sizes::quick();
-        sizes.analytical_seconds = 4.0;
         sizes.e8 = crate::ChangeSizes {
             nominal_minutes: 0.1,
             changed_minutes: 0.1,
