@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Checks an `osrl reproduce` report folder: results.json has E1..E7, config, seeds and
+"""Checks an `osrl reproduce` report folder: results.json has E1..E8, config, seeds and
 wall_seconds; every number outside `config` is finite (serde_json writes NaN/inf as null, so no null is allowed);
 no experiment reports a failed run; index.html inlines every figure; the PNGs exist."""
 import json, math, pathlib, sys
@@ -9,10 +9,23 @@ r = json.loads((out / "results.json").read_text())
 errors = []
 
 # Measured "never" outcomes: the first minute at which a target was met, null if it never was.
-NULLABLE = ("minutes_to_1mm", "minutes_to_nmse_0_05")
+NULLABLE = ("minutes_to_1mm", "minutes_to_nmse_0_05", "minutes_to_2x_nominal")
+# E8's timelines: null marks an evaluation that diverged (drawn as a gap).
+TIMELINE = ("adapting_mm", "frozen_mm", "eq7_stale_mm")
+
+# E8's rows name the numbers that are null because their evaluation diverged (error > 0.2 m).
+E8_DIVERGED = set()
+for robot, rows in r.get("E8", {}).items():
+    for change, row in rows.items():
+        for name in row.get("diverged", []):
+            E8_DIVERGED.add(f"E8.{robot}.{change}.{name}")
 
 def walk(v, path):
+    if v is None and path in E8_DIVERGED:
+        return
     if v is None and path.rsplit(".", 1)[-1] in NULLABLE:
+        return
+    if v is None and ".timeline." in path and path.rsplit(".", 1)[-1].split("[")[0] in TIMELINE:
         return
     if v is None:
         errors.append(f"{path}: null (a NaN/inf or a missing number)")
@@ -27,7 +40,7 @@ def walk(v, path):
         for i, x in enumerate(v):
             walk(x, f"{path}[{i}]")
 
-for key in [f"E{i}" for i in range(1, 8)] + ["config", "seeds", "wall_seconds"]:
+for key in [f"E{i}" for i in range(1, 9)] + ["config", "seeds", "wall_seconds"]:
     if key not in r:
         errors.append(f"missing {key}")
     elif key.startswith("E") and not r[key]:
@@ -37,7 +50,7 @@ for key, v in r.items():
     if key != "config":
         walk(v, key)
 for robot in ["planar3", "sarcos7"]:
-    for key in ["E3", "E4", "E5", "E6", "E7"]:
+    for key in ["E3", "E4", "E5", "E6", "E7", "E8"]:
         if robot not in r.get(key, {}):
             errors.append(f"{key} has no {robot}")
     e3 = r.get("E3", {}).get(robot, {})
@@ -53,6 +66,24 @@ for robot in ["planar3", "sarcos7"]:
                   "max_torque_rate", "max_command_step_analytical", "step_curve"]:
             if k not in row:
                 errors.append(f"E3.{robot}.safety[{i}]: no {k}")
+    # E8 (issue 26): every change, its timeline of three lines, the recovery times.
+    e8 = r.get("E8", {}).get(robot, {})
+    for change in ["payload", "mass_x1.3", "friction_x2"]:
+        row = e8.get(change)
+        if row is None:
+            errors.append(f"E8.{robot}: no {change}")
+            continue
+        for k in ["nominal_tracking_rms_mm", "frozen_tracking_rms_mm", "eq7_stale_tracking_rms_mm",
+                  "adapted_tracking_rms_mm", "minutes_to_1mm", "minutes_to_2x_nominal",
+                  "aborted_episodes", "max_command_step", "diverged", "timeline"]:
+            if k not in row:
+                errors.append(f"E8.{robot}.{change}: no {k}")
+        tl = row.get("timeline", {})
+        n = len(tl.get("sim_minutes", []))
+        if n < 4 or any(len(tl.get(k, [])) != n for k in TIMELINE):
+            errors.append(f"E8.{robot}.{change}: timeline of {n} points, lines of other lengths")
+    if "after_removal" not in e8.get("payload", {}):
+        errors.append(f"E8.{robot}.payload: no after_removal")
 # E9 (issue 27): when the sizes ask for it, every E9 robot has seeds, held-out paths of every
 # kind, and per path and seed both controllers' tracking, nMSE and support share, and the bound.
 e9_sizes = r.get("config", {}).get("sizes", {}).get("e9", {})
@@ -99,5 +130,5 @@ if errors:
     sys.exit(1)
 n_div = json.dumps(r).count('"diverged": true')
 e9_robots = ", ".join(sorted(r.get("E9", {})))
-print(f"report check: E1..E7 present{f', E9 for {e9_robots}' if e9_robots else ''}, all numbers finite, {html.count('<svg')} figures inline, "
+print(f"report check: E1..E8 present{f', E9 for {e9_robots}' if e9_robots else ''}, all numbers finite, {html.count('<svg')} figures inline, "
       f"{len(svgs)} SVG+PNG pairs, {n_div} diverged evaluations reported, wall {r['wall_seconds']:.0f} s")

@@ -147,7 +147,7 @@ pub struct ChangeSchedule {
 
 /// A simulated robot that changes at scheduled control steps (and back); `changed` tells the
 /// evaluator which model is the truth now.
-struct Changing {
+pub(crate) struct Changing {
     sim: SimRobot,
     nominal: Model,
     changed: Model,
@@ -155,6 +155,35 @@ struct Changing {
     at: u64,
     revert: Option<u64>,
     state: Rc<Cell<bool>>,
+}
+
+impl Changing {
+    /// `setup`'s simulator (seeded with `seed`, at rest at home) that becomes `changed` at
+    /// `schedule.at` and `setup`'s model again at `schedule.revert_at` (simulated minutes of
+    /// control steps from now).
+    pub(crate) fn new(
+        setup: &Setup,
+        changed: Model,
+        schedule: &ChangeSchedule,
+        seed: u64,
+    ) -> Result<Self> {
+        let per_min = 60.0 / setup.sim().control_period;
+        Ok(Self {
+            sim: simulator(setup, setup.model().clone(), seed)?,
+            nominal: setup.model().clone(),
+            changed,
+            steps: 0,
+            at: (schedule.at * per_min).round() as u64,
+            revert: schedule.revert_at.map(|r| (r * per_min).round() as u64),
+            state: Rc::new(Cell::new(false)),
+        })
+    }
+
+    /// Whether the robot is changed now (shared: it tells an evaluator which model is the
+    /// truth).
+    pub(crate) fn state(&self) -> Rc<Cell<bool>> {
+        self.state.clone()
+    }
 }
 
 impl Robot for Changing {
@@ -216,17 +245,8 @@ pub fn train_with_change(
         )));
     }
     let dt = setup.sim().control_period;
-    let per_min = 60.0 / dt;
-    let state = Rc::new(Cell::new(false));
-    let mut robot = Changing {
-        sim: simulator(setup, setup.model().clone(), cfg.seed)?,
-        nominal: setup.model().clone(),
-        changed: changed.clone(),
-        steps: 0,
-        at: (schedule.at * per_min).round() as u64,
-        revert: schedule.revert_at.map(|r| (r * per_min).round() as u64),
-        state: state.clone(),
-    };
+    let mut robot = Changing::new(setup, changed.clone(), schedule, cfg.seed)?;
+    let state = robot.state();
     let (n, m) = (setup.model().nq(), setup.model().task_dim());
     let mut lcfg = setup.learner_config().clone();
     lcfg.adaptation = AdaptationConfig {

@@ -6,6 +6,7 @@
 pub mod adapt;
 pub mod analytical;
 mod compare;
+pub mod e8;
 pub mod e9;
 mod error;
 pub mod family;
@@ -28,7 +29,7 @@ pub use jobs::{Job, JobResult, Observer, Quiet, Trained};
 pub use reproduce::{reproduce, FigureInputs, Reproduction};
 pub use results::Results;
 pub use setup::Setup;
-pub use sizes::{E9Sizes, RobotSizes, Sizes};
+pub use sizes::{ChangeSizes, E9Sizes, RobotSizes, Sizes};
 
 /// The set-up of `robot` among `setups`.
 pub(crate) fn setup_of<'a>(setups: &'a [(&str, Setup)], robot: &str) -> Result<&'a Setup> {

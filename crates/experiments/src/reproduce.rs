@@ -63,7 +63,7 @@ pub struct Reproduction {
     pub failed: Vec<(String, String)>,
 }
 
-/// Runs E1–E7 at `sizes` (`quick` records which sizes they are), the training jobs in parallel
+/// Runs E1–E8 at `sizes` (`quick` records which sizes they are), the training jobs in parallel
 /// on the rayon pool; `observer` sees the progress.
 ///
 /// # Errors
@@ -78,6 +78,7 @@ pub fn reproduce(sizes: &Sizes, quick: bool, observer: &dyn Observer) -> Result<
     let runs = run_analytical(sizes, &setups, observer)?;
     let done = run_jobs(sizes, &setups, observer);
     let r = assemble(&done, &runs, &setups);
+    let (e8, e8_failed) = crate::e8::run_all(sizes, &setups, &done, observer);
     let results = Results {
         e1,
         e2: e2(&runs),
@@ -86,6 +87,7 @@ pub fn reproduce(sizes: &Sizes, quick: bool, observer: &dyn Observer) -> Result<
         e5: r.e5,
         e6: r.e6,
         e7: r.e7,
+        e8,
         e9: crate::e9::e9(&done),
         config: RunConfig {
             quick,
@@ -107,6 +109,7 @@ pub fn reproduce(sizes: &Sizes, quick: bool, observer: &dyn Observer) -> Result<
     };
     let failed = (done.iter())
         .filter_map(|j| j.outcome.as_ref().err().map(|e| (j.job.name(), e.clone())))
+        .chain(e8_failed)
         .collect();
     let models = (done.into_iter())
         .filter_map(|j| Some((j.job.robot.to_string(), j.outcome.ok()?.model?)))

@@ -39,6 +39,11 @@ pub struct Results {
     /// E7 (Sec. I): eq. 7 with a wrong model vs the learned controller, keyed by model error.
     #[serde(rename = "E7")]
     pub e7: ByRobot<BTreeMap<String, ModelErrorRow>>,
+    /// E8 (issue 26): the robot changes under a controller trained on the unchanged arm —
+    /// re-adapting, frozen, eq. 7 with the stale model — keyed by change (absent in files
+    /// written before E8).
+    #[serde(rename = "E8", default)]
+    pub e8: ByRobot<BTreeMap<String, crate::e8::ChangeRow>>,
     /// E9 (issue 27): controllers trained on the figure-8 only and on the family of paths,
     /// on held-out paths ([`crate::e9`]); absent for runs without it.
     #[serde(rename = "E9", default, skip_serializing_if = "BTreeMap::is_empty")]

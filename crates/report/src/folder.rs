@@ -187,6 +187,7 @@ pub fn render(out: &Path, page: &Page) -> Result<()> {
     figs.extend(path_figures(out, page, &setups)?);
     figs.extend(learned_figures(out, page, &setups)?);
     figs.extend(ablation_figures(out, page)?);
+    figs.extend(change_figures(out, page)?);
     figs.extend(
         (crate::family::figures(out, &page.results)?.into_iter())
             .map(|(file, caption)| Fig { file, caption }),
@@ -356,6 +357,23 @@ fn e3_e4(
         file: format!("E4/{robot}_commands.svg"),
         caption: format!("E4 (paper Fig. 2c): {robot}, per joint, the learned command and the analytical optimum u* (eq. 7, N = I, true model) at the same states over one cycle."),
     });
+    Ok(figs)
+}
+
+/// E8: each robot's timelines of a changing robot.
+fn change_figures(out: &Path, page: &Page) -> Result<Vec<Fig>> {
+    let mut figs = Vec::new();
+    for robot in ROBOTS {
+        let Some(rows) = page.results.e8.get(robot).filter(|r| !r.is_empty()) else {
+            continue;
+        };
+        let f = crate::figures::change::timelines(robot, rows);
+        plot::save(&f, &out.join("E8"), &format!("{robot}_change"))?;
+        figs.push(Fig {
+            file: format!("E8/{robot}_change.svg"),
+            caption: format!("E8 (issue 26): {robot}, a learned controller trained on the unchanged arm (seed 0) while the robot changes — re-adapting on-policy, frozen, and analytical eq. 7 with the stale model; tracking RMS of each evaluation (the frozen and eq. 7 lines are their evaluations on the robot as it is)."),
+        });
+    }
     Ok(figs)
 }
 

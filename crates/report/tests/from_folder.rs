@@ -1,7 +1,7 @@
 //! The page drawn again from a report folder's data (`osrl report --from`) is the page of the
 //! run, byte for byte: every experiment at a tiny size, written, read back, drawn again.
 
-use osrl_experiments::{reproduce, E9Sizes, Quiet, RobotSizes, Sizes};
+use osrl_experiments::{reproduce, ChangeSizes, E9Sizes, Quiet, RobotSizes, Sizes};
 use osrl_report::{render, write_report, Page};
 use std::path::Path;
 
@@ -21,6 +21,12 @@ fn tiny() -> Sizes {
         arm_instants: 3,
         planar3: robot.clone(),
         sarcos7: robot,
+        e8: ChangeSizes {
+            nominal_minutes: 0.05,
+            changed_minutes: 0.05,
+            after_minutes: 0.05,
+            eval_every_minutes: 0.05,
+        },
         // E9 on planar3 (its table and figure are drawn again too).
         e9: E9Sizes {
             planar3_seeds: 1,
@@ -69,6 +75,9 @@ fn the_page_drawn_from_the_folder_is_the_page_of_the_run() {
         want.command_seconds.clear(); // wall times: not part of the folder
         assert_eq!(s, &want, "{robot}");
     }
+    // E8's timelines ran on both robots, their figure is on the page.
+    assert_eq!(page.results.e8.len(), 2, "{:?}", rep.failed);
+    assert!(a.join("E8/planar3_change.svg").exists());
     let text = std::fs::read_to_string(a.join("results.json")).unwrap();
     assert_eq!(text, rep.results.to_json().unwrap());
     // Drawn again elsewhere: the same page and the same figures, byte for byte.

@@ -1,6 +1,7 @@
 //! The figures of the experiments, each a [`crate::plot::Figure`] built from the numbers and
 //! time series of a run.
 
+pub mod change;
 pub mod commands;
 pub mod learned;
 pub mod path;

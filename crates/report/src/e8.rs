@@ -1,0 +1,64 @@
+//! E8's table on the page: per robot and change, the learned controller on the unchanged arm,
+//! frozen on the changed one, eq. 7 with the true and the stale model, and the re-adapting
+//! controller's recovery times after the change and after its removal.
+
+use crate::page::{num, table as html_table};
+use osrl_experiments::analytical::ROBOTS;
+use osrl_experiments::results::Results;
+
+/// Minutes to a bound: `never` within the timeline for none.
+fn minutes(v: Option<f64>) -> String {
+    v.map_or("never".into(), |m| format!("{m:.2}"))
+}
+
+/// A tracking number of E8, `diverged` for none (its evaluation's error passed 0.2 m).
+fn or_diverged(v: Option<f64>) -> String {
+    v.map_or("diverged".into(), |x| num(Some(x)))
+}
+
+/// E8's table: per robot and change, the three controllers and the recovery times.
+pub(crate) fn table(r: &Results) -> String {
+    let mut rows = Vec::new();
+    for rb in ROBOTS {
+        for (k, v) in r.e8.get(rb).into_iter().flatten() {
+            let a = v.after_removal.as_ref();
+            rows.push(vec![
+                rb.into(),
+                format!("{k} ({})", v.change),
+                or_diverged(v.nominal_tracking_rms_mm),
+                or_diverged(v.frozen_tracking_rms_mm),
+                format!(
+                    "{} / {}",
+                    or_diverged(v.eq7_nominal_tracking_rms_mm),
+                    or_diverged(v.eq7_stale_tracking_rms_mm)
+                ),
+                minutes(v.minutes_to_1mm),
+                minutes(v.minutes_to_2x_nominal),
+                format!(
+                    "{} / {}",
+                    or_diverged(v.adapted_tracking_rms_mm),
+                    or_diverged(v.adapted_command_nmse)
+                ),
+                a.map_or("—".into(), |a| minutes(a.minutes_to_1mm)),
+                a.map_or("—".into(), |a| minutes(a.minutes_to_2x_nominal)),
+                a.map_or("—".into(), |a| or_diverged(a.tracking_rms_mm)),
+                format!("{} / {}", v.aborted_episodes, v.braked_episodes),
+            ]);
+        }
+    }
+    let head = [
+        "robot",
+        "change",
+        "learned, unchanged arm [mm]",
+        "frozen, changed [mm]",
+        "eq. 7 true / stale model [mm]",
+        "re-adapting: to ≤ 1 mm [min]",
+        "to ≤ 2× nominal [min]",
+        "at the end of the change [mm] / nMSE",
+        "after removal: to ≤ 1 mm [min]",
+        "to ≤ 2× nominal [min]",
+        "at the end [mm]",
+        "aborted / braked episodes",
+    ];
+    html_table(&head, &rows)
+}
