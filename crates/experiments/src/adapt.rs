@@ -245,8 +245,6 @@ pub fn train_with_change(
         )));
     }
     let dt = setup.sim().control_period;
-    let mut robot = Changing::new(setup, changed.clone(), schedule, cfg.seed)?;
-    let state = robot.state();
     let (n, m) = (setup.model().nq(), setup.model().task_dim());
     let mut lcfg = setup.learner_config().clone();
     lcfg.adaptation = AdaptationConfig {
@@ -254,8 +252,27 @@ pub fn train_with_change(
         ..adaptation
     };
     let mut learner = Learner::new(n, m, dt, lcfg)?;
+    let summary = run_changing(setup, &changed, schedule, &mut learner, cfg, observe)?;
+    Ok((learner, summary))
+}
+
+/// Trains `learner` with `cfg` on the simulated robot that becomes `changed` (the truth only) as
+/// `schedule` says, each evaluation scoring the robot as it is at that moment.
+///
+/// # Errors
+/// A simulator or training error.
+pub(crate) fn run_changing(
+    setup: &Setup,
+    changed: &Model,
+    schedule: &ChangeSchedule,
+    learner: &mut Learner,
+    cfg: &TrainConfig,
+    observe: &mut dyn FnMut(&Progress),
+) -> Result<TrainSummary> {
+    let mut robot = Changing::new(setup, changed.clone(), schedule, cfg.seed)?;
+    let state = robot.state();
     let mut ev_nominal = setup.evaluator(setup.model())?;
-    let mut ev_changed = setup.evaluator(&changed)?;
+    let mut ev_changed = setup.evaluator(changed)?;
     let mut evaluate = |l: &mut Learner| {
         if state.get() {
             ev_changed.evaluate(l)
@@ -264,14 +281,13 @@ pub fn train_with_change(
         }
     };
     let axes = setup.model().task_axes().to_vec();
-    let summary = osrl_learn::train::train(
+    Ok(osrl_learn::train::train(
         &mut robot,
-        &mut learner,
+        learner,
         setup.trajectory(),
         &axes,
         cfg,
         &mut evaluate,
         observe,
-    )?;
-    Ok((learner, summary))
+    )?)
 }

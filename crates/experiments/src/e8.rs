@@ -6,7 +6,7 @@
 //! eq. 7 with the stale (unchanged) model. The learner sees only measurements; each evaluation
 //! scores it on the robot as it is at that moment.
 
-use crate::adapt::{checked_change, continuation, ChangeSchedule, Changing};
+use crate::adapt::{checked_change, continuation, run_changing, ChangeSchedule};
 use crate::error::Result;
 use crate::setup::Setup;
 use crate::sizes::Sizes;
@@ -208,27 +208,7 @@ pub fn run(setup: &Setup, learner: &Learner, key: &str, sizes: &Sizes) -> Result
         ..AdaptationConfig::default()
     })?;
     adapting.reset_adaptation();
-    let mut robot = Changing::new(setup, changed.clone(), &schedule, cfg.seed)?;
-    let state = robot.state();
-    let mut ev_nominal = setup.evaluator(setup.model())?;
-    let mut ev_changed = setup.evaluator(&changed)?;
-    let mut evaluate = |l: &mut Learner| {
-        if state.get() {
-            ev_changed.evaluate(l)
-        } else {
-            ev_nominal.evaluate(l)
-        }
-    };
-    let axes = setup.model().task_axes().to_vec();
-    let summary = osrl_learn::train::train(
-        &mut robot,
-        &mut adapting,
-        setup.trajectory(),
-        &axes,
-        &cfg,
-        &mut evaluate,
-        &mut |_| {},
-    )?;
+    let summary = run_changing(setup, &changed, &schedule, &mut adapting, &cfg, &mut |_| {})?;
     let peak = adapting.adaptation().peak_level;
 
     let curve = crate::stats::dedup_curve(&summary.learning_curve);
