@@ -6,10 +6,7 @@
 use crate::error::{ControlError, Result};
 use crate::ik::{solve_ik, IkOptions};
 use crate::trajectory::Trajectory;
-use nalgebra::Matrix3;
-use osrl_dynamics::{Friction, Inertia, Model};
-use rand::SeedableRng;
-use rand_chacha::ChaCha8Rng;
+use osrl_dynamics::Model;
 use serde::{Deserialize, Serialize};
 use std::fmt;
 use std::str::FromStr;
@@ -97,25 +94,15 @@ impl RobotChange {
     pub fn apply(&self, truth: &Model) -> Result<Model> {
         self.validate()?;
         let mut spec = truth.spec().clone();
-        let mut rng = ChaCha8Rng::seed_from_u64(self.seed);
-        for l in spec.links.iter_mut() {
-            let dir = osrl_dynamics::robots::random_unit_vector(&mut rng);
-            let i = l.inertia;
-            if i.mass > 0.0 {
-                let s = self.mass_scale;
-                let com = i.com() + dir * self.com_shift;
-                l.inertia = Inertia::from_com(i.mass * s, com, i.inertia_com() * s);
-            }
-            l.friction = Friction {
-                viscous: l.friction.viscous * self.friction_scale,
-                coulomb: l.friction.coulomb * self.friction_scale,
-                ..l.friction
-            };
-        }
+        crate::spec::perturb_links(
+            &mut spec,
+            self.seed,
+            self.mass_scale,
+            self.com_shift,
+            self.friction_scale,
+        );
         if self.payload > 0.0 {
-            let last = spec.links.last_mut().expect("a model has links");
-            let point = Inertia::from_com(self.payload, spec.ee_offset, Matrix3::zeros());
-            last.inertia = last.inertia.add(&point);
+            crate::spec::add_payload(&mut spec, self.payload);
         }
         Ok(Model::new(spec)?)
     }

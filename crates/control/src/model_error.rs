@@ -2,10 +2,7 @@
 //! simulated robot's.
 
 use crate::error::{ControlError, Result};
-use nalgebra::Matrix3;
-use osrl_dynamics::{Friction, Inertia, Model};
-use rand::SeedableRng;
-use rand_chacha::ChaCha8Rng;
+use osrl_dynamics::Model;
 use serde::{Deserialize, Serialize};
 use std::fmt;
 use std::str::FromStr;
@@ -80,28 +77,17 @@ impl ModelError {
         self.validate()?;
         let mut sim = truth.spec().clone();
         if self.payload > 0.0 {
-            let last = sim.links.last_mut().expect("a model has links");
-            let point = Inertia::from_com(self.payload, sim.ee_offset, Matrix3::zeros());
-            last.inertia = last.inertia.add(&point);
+            crate::spec::add_payload(&mut sim, self.payload);
         }
         let mut ctrl = truth.spec().clone();
-        let mut rng = ChaCha8Rng::seed_from_u64(self.seed);
-        for l in ctrl.links.iter_mut() {
-            let dir = osrl_dynamics::robots::random_unit_vector(&mut rng);
-            let i = l.inertia;
-            if i.mass > 0.0 {
-                let s = self.mass_scale;
-                let com = i.com() + dir * self.com_shift;
-                l.inertia = Inertia::from_com(i.mass * s, com, i.inertia_com() * s);
-            }
-            if !self.friction {
-                l.friction = Friction {
-                    viscous: 0.0,
-                    coulomb: 0.0,
-                    ..l.friction
-                };
-            }
-        }
+        let friction = if self.friction { 1.0 } else { 0.0 };
+        crate::spec::perturb_links(
+            &mut ctrl,
+            self.seed,
+            self.mass_scale,
+            self.com_shift,
+            friction,
+        );
         ctrl.name = format!("{} ({})", ctrl.name, self);
         Ok((Model::new(sim)?, Model::new(ctrl)?))
     }

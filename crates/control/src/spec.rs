@@ -49,3 +49,42 @@ pub(crate) fn parse(spec: &str) -> Result<SpecValues<'_>, String> {
     }
     Ok(out)
 }
+
+/// The link changes of the grammar, in place: every link with mass gets its mass and inertia
+/// scaled by `mass_scale` and its centre of mass moved by `com_shift` (m) in a random direction
+/// (one draw per link from `seed`, links in order); every joint's viscous and Coulomb friction is
+/// scaled by `friction_scale`.
+pub(crate) fn perturb_links(
+    spec: &mut osrl_dynamics::ModelSpec,
+    seed: u64,
+    mass_scale: f64,
+    com_shift: f64,
+    friction_scale: f64,
+) {
+    use rand::SeedableRng;
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+    for l in spec.links.iter_mut() {
+        let dir = osrl_dynamics::robots::random_unit_vector(&mut rng);
+        let i = l.inertia;
+        if i.mass > 0.0 {
+            let com = i.com() + dir * com_shift;
+            l.inertia = osrl_dynamics::Inertia::from_com(
+                i.mass * mass_scale,
+                com,
+                i.inertia_com() * mass_scale,
+            );
+        }
+        l.friction = osrl_dynamics::Friction {
+            viscous: l.friction.viscous * friction_scale,
+            coulomb: l.friction.coulomb * friction_scale,
+            ..l.friction
+        };
+    }
+}
+
+/// A point mass of `kg` at the end-effector, added to the last link's inertia.
+pub(crate) fn add_payload(spec: &mut osrl_dynamics::ModelSpec, kg: f64) {
+    let last = spec.links.last_mut().expect("a model has links");
+    let point = osrl_dynamics::Inertia::from_com(kg, spec.ee_offset, nalgebra::Matrix3::zeros());
+    last.inertia = last.inertia.add(&point);
+}
