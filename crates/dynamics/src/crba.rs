@@ -2,8 +2,10 @@
 
 use crate::data::{update_joint_poses, Data};
 use crate::error::{check_vec, Result};
-use crate::model::Model;
-use nalgebra::DMatrix;
+use crate::inertia::Inertia;
+use crate::model::{Link, Model};
+use crate::spatial::Force;
+use nalgebra::{DMatrix, Vector3};
 
 /// Mass matrix `M(q)` (symmetric, n×n, kg·m²) into `data.mass`; returns it.
 ///
@@ -34,35 +36,127 @@ unsafe fn crba_pass_avx2(model: &Model, data: &mut Data) {
     crba_pass_body(model, data)
 }
 
-/// CRBA on the joint poses already in `data`.
-///
-/// Column `i` of `M` is `F_i = I^c_i S_i` walked towards the base, `M_ij = S_jᵀ ᶦX*_j F_i`
-/// (Featherstone's algorithm 6.2), one column at a time so that `F_i` stays in registers (a
-/// walk level by level, as Pinocchio's, stores and reloads every column at each level and was
-/// 5 % slower).
+/// One copy of the pass per kind of motion subspace: every joint revolute about `±e_k` (the
+/// model knows, [`Model::revolute_axis`]) or any joint.
 #[inline(always)]
 fn crba_pass_body(model: &Model, data: &mut Data) {
+    match model.revolute_axis() {
+        Some(0) => pass::<UnitAxis<0>>(model, data),
+        Some(1) => pass::<UnitAxis<1>>(model, data),
+        Some(2) => pass::<UnitAxis<2>>(model, data),
+        _ => pass::<AnyAxis>(model, data),
+    }
+}
+
+/// A joint's motion subspace `S` as the pass uses it.
+trait Subspace {
+    /// `I S`: the column of the (composite) inertia `ic` that the joint of `link` moves.
+    fn column(link: &Link, ic: &Inertia) -> Force;
+    /// `Sᵀ f`.
+    fn project(link: &Link, f: &Force) -> f64;
+}
+
+/// Revolute or prismatic about any axis: the products of [`Inertia::mul_motion`] and
+/// [`Link::project`].
+struct AnyAxis;
+
+impl Subspace for AnyAxis {
+    #[inline(always)]
+    fn column(link: &Link, ic: &Inertia) -> Force {
+        ic.mul_motion(&link.motion(1.0))
+    }
+    #[inline(always)]
+    fn project(link: &Link, f: &Force) -> f64 {
+        link.project(f)
+    }
+}
+
+/// Revolute about `s e_K` with `s = ±1`: `I S = s (I_:K, −h × e_K)` and `Sᵀ f = s n_K`, the
+/// products above without their exact zero terms (the same values, up to the sign of a zero).
+struct UnitAxis<const K: usize>;
+
+impl<const K: usize> Subspace for UnitAxis<K> {
+    #[inline(always)]
+    fn column(link: &Link, ic: &Inertia) -> Force {
+        let s = link.axis[K];
+        let (k1, k2) = ((K + 1) % 3, (K + 2) % 3);
+        let mut lin = Vector3::zeros();
+        lin[k1] = -(ic.h[k2] * s);
+        lin[k2] = ic.h[k1] * s;
+        Force {
+            ang: ic.inertia.column(K) * s,
+            lin,
+        }
+    }
+    #[inline(always)]
+    fn project(link: &Link, f: &Force) -> f64 {
+        link.axis[K] * f.ang[K]
+    }
+}
+
+/// CRBA on the joint poses already in `data`, tip to base.
+///
+/// The composite inertia `I^c_i` is final once the links beyond `i` are added, so column `i` of
+/// `M` follows at once: `F_i = I^c_i S_i` walked towards the base, `M_ij = S_jᵀ ᶦX*_j F_i`
+/// (Featherstone's algorithm 6.2), with `F_i` in registers (a walk level by level, as
+/// Pinocchio's, stores and reloads every column at each level and was 5 % slower). Only the
+/// upper triangle is written in the walk (column `i`, rows `0..=i`: contiguous); the lower one is
+/// mirrored at the end.
+#[inline(always)]
+fn pass<S: Subspace>(model: &Model, data: &mut Data) {
     let n = model.nq();
     if n == 0 {
         return;
     }
     let links = &model.links()[..n];
-    // Composite inertias, tip to base.
-    data.ic[n - 1] = links[n - 1].inertia;
-    for i in (1..n).rev() {
-        let child = data.ic[i].to_parent(&data.joint_pose[i]);
-        data.ic[i - 1] = links[i - 1].inertia.add(&child);
-    }
-    let mass = &mut data.mass;
-    for i in 0..n {
-        // F = I^c_i S_i, then walk it to the base in registers: M_ij = S_jᵀ F.
-        let mut f = data.ic[i].mul_motion(&links[i].motion(1.0));
-        mass[(i, i)] = links[i].project(&f);
-        for j in (0..i).rev() {
-            f = data.joint_pose[j + 1].force_to_parent(&f);
-            let m = links[j].project(&f);
-            mass[(i, j)] = m;
-            mass[(j, i)] = m;
+    let poses = &data.joint_pose[..n];
+    let ics = &mut data.ic[..n];
+    let mass = data.mass.as_mut_slice();
+    let mut ic = links[n - 1].inertia;
+    for i in (0..n).rev() {
+        if i + 1 < n {
+            ic = links[i].inertia.add(&ic.to_parent(&poses[i + 1]));
         }
+        ics[i] = ic;
+        let col = &mut mass[i * n..i * n + i + 1];
+        let mut f = S::column(&links[i], &ic);
+        col[i] = S::project(&links[i], &f);
+        for j in (0..i).rev() {
+            f = poses[j + 1].force_to_parent(&f);
+            col[j] = S::project(&links[j], &f);
+        }
+    }
+    // Lower triangle: column j below the diagonal (contiguous) from row j of the columns
+    // right of it (stride n).
+    for j in 0..n - 1 {
+        let (left, right) = mass.split_at_mut((j + 1) * n);
+        let below = &mut left[j * n + j + 1..];
+        for (m, &u) in below.iter_mut().zip(right[j..].iter().step_by(n)) {
+            *m = u;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::robots;
+
+    /// The unit-axis path gives the general path's values (the same products without their
+    /// zero terms), on a model with every joint about `+z`, one about `−y` throughout and one
+    /// with mixed axes that takes the general path.
+    #[test]
+    fn unit_axis_path_matches_the_general_products() {
+        for model in [robots::sarcos7(), robots::planar3()] {
+            let k = model.revolute_axis().expect("a shared unit axis");
+            let n = model.nq();
+            let q: Vec<f64> = (0..n).map(|i| 0.3 * i as f64 - 0.7).collect();
+            let mut data = model.data();
+            let fast = crba(&model, &mut data, &q).unwrap().clone();
+            update_joint_poses(&model, &mut data, &q);
+            pass::<AnyAxis>(&model, &mut data);
+            assert_eq!(fast, data.mass, "{} (axis {k})", model.name());
+        }
+        assert_eq!(robots::random_arm(6, 1, false).revolute_axis(), None);
     }
 }

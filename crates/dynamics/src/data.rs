@@ -2,7 +2,7 @@
 
 use crate::inertia::{ArticulatedInertia, Inertia};
 use crate::model::Model;
-use crate::spatial::{Force, Motion, Pose};
+use crate::spatial::{rotate_about_unit, Force, Motion, Pose};
 use nalgebra::{DMatrix, DVector, Matrix3xX, Vector3};
 
 /// Workspace and results of the dynamics algorithms for one [`Model`]. Create it once with
@@ -89,10 +89,29 @@ impl Data {
     }
 }
 
-/// Joint poses `ᵖX_i(q_i)` ([`crate::Link::joint_pose`]) for every link.
+/// Joint poses `ᵖX_i(q_i)` ([`crate::Link::joint_pose`]) for every link; without testing each
+/// axis when every joint is revolute about one `±e_k` ([`Model::revolute_axis`]).
 #[inline]
 pub(crate) fn update_joint_poses(model: &Model, data: &mut Data, q: &[f64]) {
+    match model.revolute_axis() {
+        Some(0) => unit_axis_poses::<0>(model, data, q),
+        Some(1) => unit_axis_poses::<1>(model, data, q),
+        Some(2) => unit_axis_poses::<2>(model, data, q),
+        _ => {
+            for ((x, l), &qi) in data.joint_pose.iter_mut().zip(model.links()).zip(q) {
+                *x = l.joint_pose(qi);
+            }
+        }
+    }
+}
+
+/// [`update_joint_poses`] for joints all revolute about `±e_K`.
+#[inline(always)]
+fn unit_axis_poses<const K: usize>(model: &Model, data: &mut Data, q: &[f64]) {
     for ((x, l), &qi) in data.joint_pose.iter_mut().zip(model.links()).zip(q) {
-        *x = l.joint_pose(qi);
+        *x = Pose::new(
+            rotate_about_unit::<K>(&l.origin.rot, l.axis[K], qi),
+            l.origin.trans,
+        );
     }
 }

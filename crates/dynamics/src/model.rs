@@ -200,6 +200,8 @@ pub const GRAVITY: Vector3<f64> = Vector3::new(0.0, 0.0, -9.81);
 #[derive(Clone, Debug, PartialEq)]
 pub struct Model {
     spec: ModelSpec,
+    /// `Some(k)` when every joint is revolute about `±e_k` (the CRBA's unit-axis path).
+    revolute_axis: Option<usize>,
 }
 
 impl Model {
@@ -296,7 +298,17 @@ impl Model {
                 return bad(ctx("tau_max and qd_max must be > 0"));
             }
         }
-        Ok(Self { spec })
+        let revolute_axis = (0..3).find(|&k| {
+            spec.links.iter().all(|l| {
+                l.kind == JointKind::Revolute
+                    && l.axis[k].abs() == 1.0
+                    && (0..3).all(|c| c == k || l.axis[c] == 0.0)
+            })
+        });
+        Ok(Self {
+            spec,
+            revolute_axis,
+        })
     }
 
     /// The validated specification (clone and edit it to make a variant of this robot).
@@ -310,6 +322,12 @@ impl Model {
     #[inline]
     pub fn nq(&self) -> usize {
         self.spec.links.len()
+    }
+    /// `Some(k)` when every joint is revolute about `±e_k` (most arms: the DH and URDF `z`), so
+    /// that a joint's motion subspace `S` picks one component and needs no product.
+    #[inline]
+    pub(crate) fn revolute_axis(&self) -> Option<usize> {
+        self.revolute_axis
     }
     /// Task-space dimension `m`.
     #[inline]

@@ -155,12 +155,27 @@ pub fn rotate_about(o: &Matrix3<f64>, axis: &Vector3<f64>, q: f64) -> Matrix3<f6
         (0.0, 0.0, z) if z.abs() == 1.0 => (2, z),
         _ => return o * axis_angle(axis, q),
     };
+    // One copy per axis, so that the column indices are constants.
+    match a {
+        0 => rotate_about_unit::<0>(o, sign, q),
+        1 => rotate_about_unit::<1>(o, sign, q),
+        _ => rotate_about_unit::<2>(o, sign, q),
+    }
+}
+
+/// [`rotate_about`] for the axis `sign e_K` (`sign = ±1`), known to the caller
+/// ([`crate::Model`] knows when every joint shares one): the same values without the test.
+#[inline(always)]
+pub(crate) fn rotate_about_unit<const K: usize>(
+    o: &Matrix3<f64>,
+    sign: f64,
+    q: f64,
+) -> Matrix3<f64> {
     let (s, c) = q.sin_cos();
     let s = sign * s;
     // Rodrigues' diagonal entry of the turning axes, as the general formula evaluates it.
     let cc = 1.0 + -(1.0 - c);
-    // One copy per axis, so that the column indices are constants.
-    match a {
+    match K {
         0 => turn_columns::<1, 2>(o, s, cc),
         1 => turn_columns::<2, 0>(o, s, cc),
         _ => turn_columns::<0, 1>(o, s, cc),
