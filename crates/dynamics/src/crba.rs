@@ -57,7 +57,7 @@ fn crba_pass_body(model: &Model, data: &mut Data) {
 }
 
 /// A joint's motion subspace `S` as the pass uses it.
-pub(crate) trait Subspace {
+trait Subspace {
     /// `I S`: the column of the (composite) inertia `ic` that the joint of `link` moves.
     fn column(link: &Link, ic: &Inertia) -> Force;
     /// `Sᵀ f`.
@@ -81,7 +81,7 @@ impl Subspace for AnyAxis {
 
 /// Revolute about `s e_K` with `s = ±1`: `I S = s (I_:K, −h × e_K)` and `Sᵀ f = s n_K`, the
 /// products above without their exact zero terms (the same values, up to the sign of a zero).
-pub(crate) struct UnitAxis<const K: usize>;
+struct UnitAxis<const K: usize>;
 
 impl<const K: usize> Subspace for UnitAxis<K> {
     #[inline(always)]
@@ -134,13 +134,7 @@ fn pass<S: Subspace>(model: &Model, data: &mut Data) {
 /// (Featherstone's algorithm 6.2), with `F_i` in registers (a walk level by level, as
 /// Pinocchio's, stores and reloads every column at each level and was 5 % slower).
 #[inline(always)]
-pub(crate) fn column<S: Subspace>(
-    links: &[Link],
-    poses: &[Pose],
-    ic: &Inertia,
-    i: usize,
-    col: &mut [f64],
-) {
+fn column<S: Subspace>(links: &[Link], poses: &[Pose], ic: &Inertia, i: usize, col: &mut [f64]) {
     let mut f = S::column(&links[i], ic);
     col[i] = S::project(&links[i], &f);
     for j in (0..i).rev() {
@@ -149,7 +143,8 @@ pub(crate) fn column<S: Subspace>(
     }
 }
 
-/// [`pass`] for `N` joints, `N` a constant: the same operations on the same values.
+/// [`pass`] for `N` joints, `N` a constant: the same operations on the same values, both
+/// triangles written in the walk (every index known, no mirror pass).
 #[inline(always)]
 fn pass_n<S: Subspace, const N: usize>(model: &Model, data: &mut Data) {
     let links: &[Link; N] = model.links().try_into().expect("N joints");
@@ -176,7 +171,7 @@ fn pass_n<S: Subspace, const N: usize>(model: &Model, data: &mut Data) {
 /// Copies the upper triangle of the column-major `n × n` matrix `mass` into the lower one:
 /// column `j` below the diagonal (contiguous) from row `j` of the columns right of it.
 #[inline(always)]
-pub(crate) fn mirror_upper(mass: &mut [f64], n: usize) {
+fn mirror_upper(mass: &mut [f64], n: usize) {
     for j in 0..n.saturating_sub(1) {
         let (left, right) = mass.split_at_mut((j + 1) * n);
         let below = &mut left[j * n + j + 1..];
