@@ -335,7 +335,7 @@ mod tests {
     /// trained field's centre, in `steps` equal increments (no exploration, no rate limit).
     fn largest_change_into_the_field(steps: usize) -> (f64, Vec<CommandSource>) {
         let mut cfg = fixture::config();
-        cfg.guards.torque_rate_limit = f64::INFINITY;
+        cfg.guards.torque_rate_limit = Some(f64::INFINITY);
         let (mut learner, c) = one_trained_field(cfg);
         let (q0, vd) = (&c[..3], c[3..].to_vec());
         let (xdd, mut prev, mut u) = ([0.3, -0.2], None::<[f64; 3]>, [0.0; 3]);
@@ -382,7 +382,7 @@ mod tests {
     fn exploring_commands_stay_within_the_torque_rate_limit() {
         use rand::SeedableRng;
         let mut cfg = fixture::config();
-        cfg.guards.torque_rate_limit = 50.0;
+        cfg.guards.torque_rate_limit = Some(50.0);
         cfg.exploration.correlation_time = 0.0; // white noise: the worst case for the limit
         let (mut learner, c) = one_trained_field(cfg);
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);

@@ -58,9 +58,13 @@ impl StepMonitor {
         self.has_last = true;
     }
 
-    /// Whether `u` moves a joint by more than `limit` (N·m) from the last command sent.
-    pub fn jump(&self, u: &[f64], limit: f64) -> bool {
-        self.has_last && max_abs_diff(&self.last, u) > limit
+    /// Whether `u` moves a joint `j` by more than `limits[j]` (N·m) from the last command sent.
+    pub fn jump(&self, u: &[f64], limits: &[f64]) -> bool {
+        self.has_last
+            && u.iter()
+                .zip(&self.last)
+                .zip(limits)
+                .any(|((a, b), l)| (a - b).abs() > *l)
     }
 
     /// The last command sent, into `u` (unchanged if none was).
