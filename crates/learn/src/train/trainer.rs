@@ -34,6 +34,9 @@ pub struct TrainSummary {
     /// others braked on the task error (`curriculum.brake_error`).
     #[serde(default)]
     pub braked_on_step: u64,
+    /// Of those, per joint: the episodes whose refused command jumped first on that joint.
+    #[serde(default)]
+    pub braked_on_step_by_joint: Vec<u64>,
     /// `(simulated minutes, evaluation)` pairs.
     pub learning_curve: Vec<(f64, EvalResult)>,
     /// Largest change of a joint's command between consecutive on-policy commands (N·m),
@@ -125,6 +128,8 @@ pub struct Trainer<'a, R: Robot + ?Sized> {
     pub(super) jump_guard: bool,
     /// The per-joint jump (N·m) that brakes an episode (`curriculum.brake_step`, or computed).
     brake_steps: Vec<f64>,
+    /// Refused jumps per joint (the first joint over its step).
+    jumps_by_joint: Vec<u64>,
     pub(super) jumped: bool,
     /// The torque-rate limit on the driver's own (PD) commands, and how often it acted.
     pub(super) rate: RateLimiter,
@@ -213,6 +218,7 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
             driver_clipped: 0,
             jump_guard: false,
             brake_steps,
+            jumps_by_joint: vec![0; n],
             jumped: false,
             rate,
             rate_limited: 0,
@@ -298,10 +304,15 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
         if clipped && self.progress.phase == Phase::OnPolicy {
             self.driver_clipped += 1;
         }
-        if self.jump_guard && self.steps_seen.jump(&self.u, &self.brake_steps) {
+        if let Some(j) = self
+            .jump_guard
+            .then(|| self.steps_seen.jump(&self.u, &self.brake_steps))
+            .flatten()
+        {
             // Refused: the previous command again, and the episode brakes.
             self.steps_seen.repeat_last(&mut self.u);
             self.jumped = true;
+            self.jumps_by_joint[j] += 1;
         }
         if self.rate.apply(&mut self.u) {
             self.rate_limited += 1;
@@ -370,6 +381,7 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
             aborted_episodes: self.progress.aborted_episodes,
             braked_episodes: self.progress.braked_episodes,
             braked_on_step: self.progress.braked_on_step,
+            braked_on_step_by_joint: std::mem::take(&mut self.jumps_by_joint),
             learning_curve: self.curve,
             max_command_step: self.steps_seen.max_step,
             max_torque_rate: self.steps_seen.max_step / self.dt,
