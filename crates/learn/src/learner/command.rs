@@ -406,4 +406,27 @@ mod tests {
             "the limit never acted"
         );
     }
+
+    /// The learner's limiter follows the scaling rule: planar3's data sheet keeps 2 N·m per
+    /// 2 ms; the same arm with ten times its torque limits gets ten times the step on the
+    /// joints above 100 N·m (and the floor on the others); a set rate wins; new torque limits
+    /// move the limiter with them.
+    #[test]
+    fn the_learners_rate_limit_scales_with_its_torque_limits() {
+        let dt = 0.002;
+        let learner = crate::Learner::new(3, 2, dt, fixture::config()).unwrap();
+        assert_eq!(learner.rate.steps(), &[2.0; 3]);
+        let mut heavy = fixture::config();
+        heavy.guards.torque_limits = vec![600.0, 400.0, 20.0];
+        let mut learner = crate::Learner::new(3, 2, dt, heavy.clone()).unwrap();
+        let want = [12.0, 8.0, 2.0];
+        for (s, w) in learner.rate.steps().iter().zip(want) {
+            assert!((s - w).abs() < 1e-12, "{:?}", learner.rate.steps());
+        }
+        learner.set_torque_limits(&[60.0, 40.0, 20.0]).unwrap();
+        assert_eq!(learner.rate.steps(), &[2.0; 3]);
+        heavy.guards.torque_rate_limit = Some(50.0);
+        let learner = crate::Learner::new(3, 2, dt, heavy).unwrap();
+        assert!(learner.rate.steps().iter().all(|s| (s - 0.1).abs() < 1e-12));
+    }
 }
