@@ -38,6 +38,8 @@ pub fn summary_json(s: &TrainSummary, final_eval: &EvalSummary, robot: &str) -> 
         "paths_drawn": s.paths_drawn,
         "aborted_episodes": s.aborted_episodes,
         "braked_episodes": s.braked_episodes,
+        "braked_on_step": s.braked_on_step,
+        "braked_on_step_by_joint": s.braked_on_step_by_joint,
         "counters": s.stats,
         "rejected_samples": rejected(s).0,
         "rejected_share": rejected(s).1,

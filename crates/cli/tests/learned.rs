@@ -48,6 +48,8 @@ fn train_eval_simulate_round_trip() {
         "minutes_to_nmse_0.05",
         "aborted_episodes",
         "braked_episodes",
+        "braked_on_step",
+        "braked_on_step_by_joint",
         "clipped_on_policy",
         "command_step_curve",
         "counters",

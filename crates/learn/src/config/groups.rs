@@ -174,10 +174,12 @@ pub struct GuardConfig {
     ///
     /// [`LearnerConfig::for_robot`]: super::LearnerConfig::for_robot
     pub torque_limits: Vec<f64>,
-    /// Largest change of a joint's command per second (N·m/s): every command is moved towards
-    /// its value by at most `limit · dt` from the previous one (counted). Default 1000: the rate
-    /// at which a Franka arm's controller stops the robot.
-    pub torque_rate_limit: f64,
+    /// Largest change of a joint's command per second (N·m/s), for every joint: every command
+    /// is moved towards its value by at most `limit · dt` from the previous one (counted).
+    /// Default `None`: computed per joint from its torque limit ([`super::scaled`]): 1000 N·m/s
+    /// (the rate at which a Franka arm's controller stops the robot) up to 100 N·m, in
+    /// proportion above (a 330 N·m joint: 3300 N·m/s).
+    pub torque_rate_limit: Option<f64>,
     /// Measurements with `|ẍ|` above this (m/s²) are rejected as absurd (counted). Default 1000:
     /// far above any arm's task acceleration, so only sensor faults trip it.
     pub max_abs_acceleration: f64,
@@ -294,7 +296,7 @@ impl Default for GuardConfig {
     fn default() -> Self {
         Self {
             torque_limits: Vec::new(),
-            torque_rate_limit: 1000.0,
+            torque_rate_limit: None,
             max_abs_acceleration: 1000.0,
             max_abs_velocity: 100.0,
             warmup_samples: 1000,

@@ -4,6 +4,7 @@
 
 mod adaptation;
 mod groups;
+pub mod scaled;
 mod validate;
 
 pub use adaptation::AdaptationConfig;

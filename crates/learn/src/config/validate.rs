@@ -135,9 +135,9 @@ impl LearnerConfig {
                 )
             },
         )?;
-        ensure(g.torque_rate_limit > 0.0, || {
+        ensure(g.torque_rate_limit.is_none_or(|r| r > 0.0), || {
             format!(
-                "guards.torque_rate_limit {} must be > 0 (N·m/s)",
+                "guards.torque_rate_limit {:?} must be > 0 (N·m/s)",
                 g.torque_rate_limit
             )
         })?;

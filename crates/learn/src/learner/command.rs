@@ -335,7 +335,7 @@ mod tests {
     /// trained field's centre, in `steps` equal increments (no exploration, no rate limit).
     fn largest_change_into_the_field(steps: usize) -> (f64, Vec<CommandSource>) {
         let mut cfg = fixture::config();
-        cfg.guards.torque_rate_limit = f64::INFINITY;
+        cfg.guards.torque_rate_limit = Some(f64::INFINITY);
         let (mut learner, c) = one_trained_field(cfg);
         let (q0, vd) = (&c[..3], c[3..].to_vec());
         let (xdd, mut prev, mut u) = ([0.3, -0.2], None::<[f64; 3]>, [0.0; 3]);
@@ -382,7 +382,7 @@ mod tests {
     fn exploring_commands_stay_within_the_torque_rate_limit() {
         use rand::SeedableRng;
         let mut cfg = fixture::config();
-        cfg.guards.torque_rate_limit = 50.0;
+        cfg.guards.torque_rate_limit = Some(50.0);
         cfg.exploration.correlation_time = 0.0; // white noise: the worst case for the limit
         let (mut learner, c) = one_trained_field(cfg);
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
@@ -405,5 +405,28 @@ mod tests {
             learner.stats().rate_limited > before,
             "the limit never acted"
         );
+    }
+
+    /// The learner's limiter follows the scaling rule: planar3's data sheet keeps 2 N·m per
+    /// 2 ms; the same arm with ten times its torque limits gets ten times the step on the
+    /// joints above 100 N·m (and the floor on the others); a set rate wins; new torque limits
+    /// move the limiter with them.
+    #[test]
+    fn the_learners_rate_limit_scales_with_its_torque_limits() {
+        let dt = 0.002;
+        let learner = crate::Learner::new(3, 2, dt, fixture::config()).unwrap();
+        assert_eq!(learner.rate.steps(), &[2.0; 3]);
+        let mut heavy = fixture::config();
+        heavy.guards.torque_limits = vec![600.0, 400.0, 20.0];
+        let mut learner = crate::Learner::new(3, 2, dt, heavy.clone()).unwrap();
+        let want = [12.0, 8.0, 2.0];
+        for (s, w) in learner.rate.steps().iter().zip(want) {
+            assert!((s - w).abs() < 1e-12, "{:?}", learner.rate.steps());
+        }
+        learner.set_torque_limits(&[60.0, 40.0, 20.0]).unwrap();
+        assert_eq!(learner.rate.steps(), &[2.0; 3]);
+        heavy.guards.torque_rate_limit = Some(50.0);
+        let learner = crate::Learner::new(3, 2, dt, heavy).unwrap();
+        assert!(learner.rate.steps().iter().all(|s| (s - 0.1).abs() < 1e-12));
     }
 }

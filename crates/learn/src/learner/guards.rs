@@ -4,21 +4,34 @@
 /// (N·m), against the last command it let through. Allocation-free after construction.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RateLimiter {
-    /// Largest change per command (N·m).
-    step: f64,
+    /// Largest change per command of each joint (N·m).
+    steps: Vec<f64>,
     prev: Vec<f64>,
     has_prev: bool,
 }
 
 impl RateLimiter {
-    /// A limiter for `n` joints, `rate` N·m/s and control period `dt` s, with no previous
-    /// command (the first command passes unchanged).
-    pub fn new(n: usize, rate: f64, dt: f64) -> Self {
+    /// A limiter for one joint per entry of `rates` (N·m/s) at control period `dt` s, with no
+    /// previous command (the first command passes unchanged).
+    pub fn new(rates: &[f64], dt: f64) -> Self {
         Self {
-            step: rate * dt,
-            prev: vec![0.0; n],
+            steps: rates.iter().map(|r| r * dt).collect(),
+            prev: vec![0.0; rates.len()],
             has_prev: false,
         }
+    }
+
+    /// New per-joint limits (N·m/s) at period `dt` s; the last command is kept.
+    pub fn set_rates(&mut self, rates: &[f64], dt: f64) {
+        for (s, r) in self.steps.iter_mut().zip(rates) {
+            *s = r * dt;
+        }
+    }
+
+    /// The largest change per command of each joint (N·m).
+    #[cfg(test)]
+    pub fn steps(&self) -> &[f64] {
+        &self.steps
     }
 
     /// Sets the command last sent (`None`: forget it, so the next command passes unchanged).
@@ -37,8 +50,8 @@ impl RateLimiter {
     pub fn apply(&mut self, u: &mut [f64]) -> bool {
         let mut limited = false;
         if self.has_prev {
-            for (v, p) in u.iter_mut().zip(&self.prev) {
-                let c = v.clamp(p - self.step, p + self.step);
+            for ((v, p), s) in u.iter_mut().zip(&self.prev).zip(&self.steps) {
+                let c = v.clamp(p - s, p + s);
                 limited |= c != *v;
                 *v = c;
             }
@@ -55,7 +68,7 @@ mod tests {
 
     #[test]
     fn consecutive_commands_change_by_at_most_the_rate_times_the_period() {
-        let mut r = RateLimiter::new(2, 1000.0, 0.002);
+        let mut r = RateLimiter::new(&[1000.0; 2], 0.002);
         let mut u = [5.0, -3.0];
         assert!(!r.apply(&mut u));
         assert_eq!(u, [5.0, -3.0]);

@@ -4,7 +4,7 @@
 use super::exploration::Noise;
 use super::stats::Scratch;
 use super::{AdaptationSignal, Features, LearnerStats, Models, RateLimiter};
-use crate::config::LearnerConfig;
+use crate::config::{scaled, LearnerConfig};
 use crate::error::{LearnError, Result};
 use crate::forward::ForwardModel;
 use crate::gravity::GravityModel;
@@ -78,7 +78,9 @@ impl Learner {
             cfg.exploration.correlation_time,
             dt,
         );
-        let rate = RateLimiter::new(n, cfg.guards.torque_rate_limit, dt);
+        let g = &cfg.guards;
+        let rates = scaled::torque_rate_limits(g.torque_rate_limit, &g.torque_limits, n);
+        let rate = RateLimiter::new(&rates, dt);
         Ok(Self {
             noise,
             rate,
@@ -136,6 +138,9 @@ impl Learner {
         let mut cfg = self.cfg.clone();
         cfg.guards.torque_limits = tau_max.to_vec();
         cfg.validate(self.n)?;
+        let g = &cfg.guards;
+        let rates = scaled::torque_rate_limits(g.torque_rate_limit, &g.torque_limits, self.n);
+        self.rate.set_rates(&rates, self.dt);
         self.cfg = cfg;
         Ok(())
     }

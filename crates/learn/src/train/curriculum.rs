@@ -36,11 +36,12 @@ pub struct CurriculumConfig {
     /// within a fraction of a second, so the hand-over comes while it still tracks.
     pub brake_error: f64,
     /// A command that would change a joint's torque by more than this from the last command
-    /// sent (N·m) is not sent (the last one is repeated) and the episode brakes the same way.
-    /// Default 1: well above the exploration's steps (below 0.5 N·m on the built-in arms), well
-    /// below the torque-rate limit's 2 N·m per 2 ms; a controller that starts to oscillate is
-    /// stopped at its first jump.
-    pub brake_step: f64,
+    /// sent (N·m, every joint) is not sent (the last one is repeated) and the episode brakes the
+    /// same way. Default `None`: computed per joint from its torque limit
+    /// (`osrl_learn::config::scaled`): 1 N·m up to 100 N·m — well above the exploration's steps
+    /// (below 0.5 N·m on the built-in arms), half the torque-rate limit's 2 N·m per 2 ms — and
+    /// in proportion above; a controller that starts to oscillate is stopped at its first jump.
+    pub brake_step: Option<f64>,
 }
 
 impl Default for CurriculumConfig {
@@ -52,7 +53,7 @@ impl Default for CurriculumConfig {
             stop_seconds: 0.5,
             hold_seconds: 1.0,
             brake_error: 0.01,
-            brake_step: 1.0,
+            brake_step: None,
         }
     }
 }
@@ -77,7 +78,7 @@ impl CurriculumConfig {
             ("stop_seconds", self.stop_seconds, false),
             ("hold_seconds", self.hold_seconds, true),
             ("brake_error", self.brake_error, false),
-            ("brake_step", self.brake_step, false),
+            ("brake_step", self.brake_step.unwrap_or(1.0), false),
         ];
         for (what, v, zero_ok) in fields {
             if !(v.is_finite() && (v > 0.0 || (zero_ok && v == 0.0))) {

@@ -38,6 +38,10 @@ pub struct Progress {
     /// [`CurriculumConfig::brake_error`](super::CurriculumConfig::brake_error) and `brake_step`).
     #[serde(default)]
     pub braked_episodes: u64,
+    /// Of the braked episodes, those braked because a command would have jumped by more than
+    /// `brake_step` (the rest braked on the task error).
+    #[serde(default)]
+    pub braked_on_step: u64,
     /// Last evaluation result, if any.
     pub eval: Option<EvalResult>,
     /// Largest change of the commanded torque between two consecutive on-policy steps (N·m).
@@ -73,6 +77,7 @@ impl Progress {
             episodes: 0,
             aborted_episodes: 0,
             braked_episodes: 0,
+            braked_on_step: 0,
             eval: None,
             max_command_step: 0.0,
             stage: 0,

@@ -87,6 +87,7 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
             }
             if e > cc.brake_error || self.jumped {
                 self.progress.braked_episodes += 1;
+                self.progress.braked_on_step += u64::from(self.jumped);
                 braked = true;
                 break;
             }

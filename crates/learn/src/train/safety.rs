@@ -58,9 +58,16 @@ impl StepMonitor {
         self.has_last = true;
     }
 
-    /// Whether `u` moves a joint by more than `limit` (N·m) from the last command sent.
-    pub fn jump(&self, u: &[f64], limit: f64) -> bool {
-        self.has_last && max_abs_diff(&self.last, u) > limit
+    /// The first joint `j` that `u` moves by more than `limits[j]` (N·m) from the last command
+    /// sent, if any.
+    pub fn jump(&self, u: &[f64], limits: &[f64]) -> Option<usize> {
+        if !self.has_last {
+            return None;
+        }
+        u.iter()
+            .zip(&self.last)
+            .zip(limits)
+            .position(|((a, b), l)| (a - b).abs() > *l)
     }
 
     /// The last command sent, into `u` (unchanged if none was).

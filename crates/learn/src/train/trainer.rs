@@ -7,6 +7,7 @@ use super::observer::{Observer, Phase, Progress};
 use super::paths::{check_start, PathSource};
 use super::safety::{StepMonitor, StepPoint};
 use super::TrainConfig;
+use crate::config::scaled;
 use crate::error::{LearnError, Result};
 use crate::eval::EvalResult;
 use crate::learner::{Learner, LearnerStats, RateLimiter};
@@ -29,6 +30,13 @@ pub struct TrainSummary {
     /// Episodes ended early by braking the path clock on a growing task error.
     #[serde(default)]
     pub braked_episodes: u64,
+    /// Of the braked episodes, those braked on a command jump (`curriculum.brake_step`); the
+    /// others braked on the task error (`curriculum.brake_error`).
+    #[serde(default)]
+    pub braked_on_step: u64,
+    /// Of those, per joint: the episodes whose refused command jumped first on that joint.
+    #[serde(default)]
+    pub braked_on_step_by_joint: Vec<u64>,
     /// `(simulated minutes, evaluation)` pairs.
     pub learning_curve: Vec<(f64, EvalResult)>,
     /// Largest change of a joint's command between consecutive on-policy commands (N·m),
@@ -118,6 +126,10 @@ pub struct Trainer<'a, R: Robot + ?Sized> {
     /// Whether a command that jumps by more than `curriculum.brake_step` from the last one is
     /// refused (during episodes), and whether one was since the flag was last cleared.
     pub(super) jump_guard: bool,
+    /// The per-joint jump (N·m) that brakes an episode (`curriculum.brake_step`, or computed).
+    brake_steps: Vec<f64>,
+    /// Refused jumps per joint (the first joint over its step).
+    jumps_by_joint: Vec<u64>,
     pub(super) jumped: bool,
     /// The torque-rate limit on the driver's own (PD) commands, and how often it acted.
     pub(super) rate: RateLimiter,
@@ -167,7 +179,10 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
                 robot.task_dim()
             )));
         }
-        let rate = RateLimiter::new(n, learner.config().guards.torque_rate_limit, dt);
+        let g = &learner.config().guards;
+        let rates = scaled::torque_rate_limits(g.torque_rate_limit, &g.torque_limits, n);
+        let rate = RateLimiter::new(&rates, dt);
+        let brake_steps = scaled::brake_steps(cfg.curriculum.brake_step, &g.torque_limits, n);
         let prev = robot.measurement().clone();
         let (q_min, q_max) = robot.joint_limits();
         let (q_min, q_max) = (q_min.to_vec(), q_max.to_vec());
@@ -202,6 +217,8 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
             clipped_before: 0,
             driver_clipped: 0,
             jump_guard: false,
+            brake_steps,
+            jumps_by_joint: vec![0; n],
             jumped: false,
             rate,
             rate_limited: 0,
@@ -287,14 +304,15 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
         if clipped && self.progress.phase == Phase::OnPolicy {
             self.driver_clipped += 1;
         }
-        if self.jump_guard
-            && self
-                .steps_seen
-                .jump(&self.u, self.cfg.curriculum.brake_step)
+        if let Some(j) = self
+            .jump_guard
+            .then(|| self.steps_seen.jump(&self.u, &self.brake_steps))
+            .flatten()
         {
             // Refused: the previous command again, and the episode brakes.
             self.steps_seen.repeat_last(&mut self.u);
             self.jumped = true;
+            self.jumps_by_joint[j] += 1;
         }
         if self.rate.apply(&mut self.u) {
             self.rate_limited += 1;
@@ -362,6 +380,8 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
             episodes: self.progress.episodes,
             aborted_episodes: self.progress.aborted_episodes,
             braked_episodes: self.progress.braked_episodes,
+            braked_on_step: self.progress.braked_on_step,
+            braked_on_step_by_joint: std::mem::take(&mut self.jumps_by_joint),
             learning_curve: self.curve,
             max_command_step: self.steps_seen.max_step,
             max_torque_rate: self.steps_seen.max_step / self.dt,
