@@ -1,4 +1,4 @@
-//! The safety numbers that scale with the robot (`docs/decisions.md`, D17): where the user did
+//! The safety numbers that scale with the robot (`docs/decisions.md`, D19): where the user did
 //! not set them, the torque-rate limit and the braking step of each joint are computed from the
 //! joint's torque limit — a data-sheet value (the profile's `torque_limits`: the URDF's `effort`
 //! or the user's), never the simulator's dynamics. A joint without a torque limit, and every
