@@ -98,3 +98,23 @@ fn a_reloaded_controller_adapts_exactly_as_the_in_memory_one() {
     assert_eq!(a.signal, b.signal);
     assert_eq!(in_memory.to_bytes().unwrap(), reloaded.to_bytes().unwrap());
 }
+
+/// The load correction of `u0` (`learner/load.rs`): a payload makes it learn offsets and the
+/// adapted controller tracks better than the frozen one on the loaded arm; when the payload is
+/// removed the offsets shrink back.
+#[test]
+fn the_load_correction_absorbs_a_payload_and_returns_when_it_is_removed() {
+    let (setup, mut learner) = trained();
+    assert!(learner.load_correction().is_empty());
+    let a = run(&setup, &mut learner, "payload=0.5", 1.0);
+    let c = learner.load_correction().max_abs();
+    let end = |r: &Adapted| r.summary.learning_curve.last().unwrap().1.tracking_rms_mm;
+    let before = a.before.tracking_rms_mm;
+    assert!(c > 0.05, "max |b| = {c} N·m");
+    assert!(end(&a) < before, "{before} → {} mm", end(&a));
+    learner.reset_adaptation();
+    let r = run(&setup, &mut learner, "none", 1.0);
+    let c2 = learner.load_correction().max_abs();
+    assert!(c2 < 0.5 * c, "max |b| {c} → {c2} N·m");
+    assert_eq!(r.summary.aborted_episodes, 0);
+}

@@ -167,3 +167,43 @@ impl Learner {
             .map_err(|e| LearnError::Load(format!("{}: {e}", path.display())))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::{checksum, MAGIC};
+    use crate::learner::fixture;
+    use crate::Learner;
+    use lwpr::{Activation, RfId};
+
+    /// The load correction is saved and read back; a file written before it existed (the same
+    /// payload without its trailing empty map) reads with an empty correction.
+    #[test]
+    fn the_load_correction_round_trips_and_older_files_still_read() {
+        let (mut learner, _, _) = fixture::ready(fixture::config(), 200, 50);
+        let bytes = learner.to_bytes().unwrap();
+        // An empty map is one byte (its length, 0) at the end of the payload.
+        assert_eq!(*bytes.last().unwrap(), 0);
+        let payload = &bytes[28..bytes.len() - 1];
+        let mut old = Vec::new();
+        old.extend_from_slice(MAGIC);
+        old.extend_from_slice(&bytes[8..12]);
+        old.extend_from_slice(&(payload.len() as u64).to_le_bytes());
+        old.extend_from_slice(&checksum(payload).to_le_bytes());
+        old.extend_from_slice(payload);
+        let back = Learner::from_bytes(&old).unwrap();
+        assert!(back.load_correction().is_empty());
+        assert_eq!(back.to_bytes().unwrap(), bytes);
+
+        let acts = [Activation {
+            id: RfId(3),
+            w: 1.0,
+        }];
+        learner
+            .load
+            .learn(&acts, &[0.0; 3], &[1.5, -0.5, 0.25], 1.0);
+        assert_eq!(learner.load_correction().len(), 1);
+        let back = Learner::from_bytes(&learner.to_bytes().unwrap()).unwrap();
+        assert_eq!(back.load_correction(), learner.load_correction());
+        assert_eq!(back.load_correction().max_abs(), 1.5);
+    }
+}

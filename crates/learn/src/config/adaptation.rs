@@ -55,6 +55,10 @@ pub struct AdaptationConfig {
     /// learning, > 0). Default 1: the measured torque error `ε` is noisy (exploration, the
     /// measured `ẍ`), and a payload shows within a few passes of a field.
     pub load_time_constant: f64,
+    /// Whether the forward model (the partition) stops learning while the re-adaptation is on
+    /// (`enabled`): no field is added, moved or reshaped by the changed robot's data. Default
+    /// false.
+    pub freeze_partition: bool,
 }
 
 impl Default for AdaptationConfig {
@@ -73,6 +77,7 @@ impl Default for AdaptationConfig {
             trust_scale: 4.0,
             load_correction: true,
             load_time_constant: 1.0,
+            freeze_partition: false,
         }
     }
 }

@@ -94,7 +94,8 @@ impl Step<'_> {
             g.learn(q0, qd0, q, qd, u, dt)?;
         }
         let every = self.cfg.partition.learn_every as u64;
-        if self.stats.samples.is_multiple_of(every) {
+        let frozen = ad.enabled && ad.freeze_partition;
+        if !frozen && self.stats.samples.is_multiple_of(every) {
             self.models.forward.learn(q, qd, u, cur.xdd.as_slice())?;
         }
         Ok(())
