@@ -156,7 +156,7 @@ mod tests {
         let mut u = [1.0, 2.0];
         assert!(!load.add_into(&[act(1, 1.0)], &mut u));
         assert_eq!(u, [1.0, 2.0]);
-        for _ in 0..2000 {
+        for _ in 0..5000 {
             load.learn(&[act(1, 1.0)], &[0.0, 0.0], &[3.0, -1.0], 0.01);
             load.learn(&[act(2, 0.5)], &[0.0, 0.0], &[1.0, 1.0], 0.01);
         }
