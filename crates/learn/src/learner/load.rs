@@ -12,7 +12,10 @@
 //! controllers act in. Each active field moves its offset towards `c + ε`:
 //! `b_i ← b_i + α a w_i (c + ε − b_i)`, `α = dt / load_time_constant`, `a` the re-adaptation's
 //! strength — so on an unchanged robot (`a = 0`) nothing moves, and when the change is undone the
-//! offsets return towards 0 the same way.
+//! offsets move back the same way (slowly: `docs/decisions.md`, D-adapt).
+//!
+//! A field's offset is allocated the first time it learns (as its controller is when the field is
+//! added); the blend and the update allocate nothing.
 
 use super::{Features, Models};
 use crate::config::LearnerConfig;
