@@ -47,6 +47,18 @@ pub struct AdaptationConfig {
     /// Factor on the RWR trust region at full strength (≥ 1). Default 4: the controllers may move
     /// four times as far per M-step while they re-adapt.
     pub trust_scale: f64,
+    /// Whether the nominal behaviour `u0` learns a load correction while re-adapting (one
+    /// offset per receptive field, `learner/load.rs`), so the change is absorbed by `u0` instead
+    /// of every local controller. Default true (`docs/decisions.md`, D-adapt).
+    pub load_correction: bool,
+    /// Time constant of the load correction's offsets at full strength and activation 1 (s of
+    /// learning, > 0). Default 1: the measured torque error `ε` is noisy (exploration, the
+    /// measured `ẍ`), and a payload shows within a few passes of a field.
+    pub load_time_constant: f64,
+    /// Whether the forward model (the partition) stops learning while the re-adaptation is on
+    /// (`enabled`): no field is added, moved or reshaped by the changed robot's data. Default
+    /// false.
+    pub freeze_partition: bool,
 }
 
 impl Default for AdaptationConfig {
@@ -63,6 +75,9 @@ impl Default for AdaptationConfig {
             release_seconds: 20.0,
             pause_static_gravity: false,
             trust_scale: 4.0,
+            load_correction: true,
+            load_time_constant: 1.0,
+            freeze_partition: false,
         }
     }
 }
@@ -100,6 +115,10 @@ impl AdaptationConfig {
             ),
             ("dynamics_forgetting", unit(self.dynamics_forgetting)),
             ("controller_forgetting", unit(self.controller_forgetting)),
+            (
+                "load_time_constant",
+                self.load_time_constant > 0.0 && self.load_time_constant.is_finite(),
+            ),
             (
                 "trust_scale",
                 self.trust_scale >= 1.0 && self.trust_scale.is_finite(),

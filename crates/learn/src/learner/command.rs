@@ -156,6 +156,7 @@ impl Learner {
                 qd,
                 u0,
             )?;
+            self.load.add_into(&self.ws.acts, u0);
             for (v, o) in u.iter_mut().zip(u0.iter()) {
                 *v += o;
             }

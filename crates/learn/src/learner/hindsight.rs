@@ -7,7 +7,7 @@
 use super::cost::{cost, shrink_target};
 use super::nominal::nominal_into;
 use super::stats::{LearnerStats, Scratch};
-use super::AdaptationSignal;
+use super::{AdaptationSignal, LoadCorrection};
 use super::{Features, Learner, Models, State};
 use crate::config::LearnerConfig;
 use crate::error::Result;
@@ -27,6 +27,7 @@ struct Step<'a> {
     dt: f64,
     gravity_frozen: bool,
     adapt: &'a mut AdaptationSignal,
+    load: &'a mut LoadCorrection,
 }
 
 impl Learner {
@@ -46,6 +47,7 @@ impl Learner {
             dt: self.dt,
             gravity_frozen: self.gravity_frozen,
             adapt: &mut self.adapt,
+            load: &mut self.load,
         }
         .run(prev, cur)
     }
@@ -60,6 +62,7 @@ impl Step<'_> {
         self.prune_idle_untrained()?;
         self.follow_partition(cur)?;
         let known = self.relabel(cur)?;
+        self.learn_load(cur)?;
         let r = cost(self.cfg, known, self.ws);
         self.update_locals(cur, r)
     }
@@ -78,10 +81,21 @@ impl Step<'_> {
         let paused = ad.enabled && ad.pause_static_gravity && self.adapt.strength > 0.0;
         let static_on = (!self.gravity_frozen || self.cfg.gravity.static_on_policy) && !paused;
         if let (true, true, Some(g)) = (dt > 0.0, static_on, self.models.gravity_static.as_mut()) {
+            // With a load correction in `u0`, the static model keeps the gravity without it
+            // (`c` at the last relabelled state, the previous one: the arm is still).
+            let u = if self.load.is_empty() {
+                u
+            } else {
+                for ((z, ui), c) in self.ws.z.iter_mut().zip(u).zip(&self.ws.load_c) {
+                    *z = ui - c;
+                }
+                self.ws.z.as_slice()
+            };
             g.learn(q0, qd0, q, qd, u, dt)?;
         }
         let every = self.cfg.partition.learn_every as u64;
-        if self.stats.samples.is_multiple_of(every) {
+        let frozen = ad.enabled && ad.freeze_partition;
+        if !frozen && self.stats.samples.is_multiple_of(every) {
             self.models.forward.learn(q, qd, u, cur.xdd.as_slice())?;
         }
         Ok(())
@@ -159,7 +173,10 @@ impl Step<'_> {
                     let now = self.stats.samples;
                     models.locals.add(id, center, init, init_u, &spec, now)?;
                 }
-                RfEvent::Pruned { id, .. } => models.locals.remove(id),
+                RfEvent::Pruned { id, .. } => {
+                    models.locals.remove(id);
+                    self.load.remove(id);
+                }
             }
         }
         Ok(())
@@ -172,6 +189,8 @@ impl Step<'_> {
         let (q, qd, u) = (cur.q.as_slice(), cur.qd.as_slice(), cur.u.as_slice());
         let ws = &mut *self.ws;
         let models = &mut *self.models;
+        let cutoff = self.cfg.partition.activation_cutoff;
+        models.forward.activations(q, qd, cutoff, &mut ws.acts)?;
         nominal_into(
             &self.cfg.nominal,
             Some(&mut *models),
@@ -181,17 +200,57 @@ impl Step<'_> {
             &mut ws.u0,
         )?;
         let residual = self.cfg.experimental.residual;
+        ws.load_c.fill(0.0);
+        if !self.load.is_empty() {
+            if residual {
+                self.load.add_into(&ws.acts, &mut ws.load_c);
+            }
+            for (o, c) in ws.u0.iter_mut().zip(&ws.load_c) {
+                *o += c;
+            }
+        }
         for (i, &ui) in u.iter().enumerate() {
             ws.du[i] = ui - ws.u0[i];
             ws.target[i] = if residual { ws.du[i] } else { ui };
         }
-        let cutoff = self.cfg.partition.activation_cutoff;
-        models.forward.activations(q, qd, cutoff, &mut ws.acts)?;
         let known = models.blended_gain(self.features, &ws.acts, q, &mut ws.a_hat);
         if known && residual {
             shrink_target(self.cfg.controllers.null_space_shrink, ws);
         }
         Ok(known)
+    }
+
+    /// The load correction learns while re-adapting (`load.rs`): each active field's offset
+    /// moves towards `c + ε`, `ε = u − û` the executed command minus the policy's command for the
+    /// measured `ẍ`. Nothing without `adaptation.load_correction`, in the non-residual variant,
+    /// or at strength 0.
+    fn learn_load(&mut self, cur: &Measurement) -> Result<()> {
+        let ad = &self.cfg.adaptation;
+        let on = ad.enabled && ad.load_correction && self.cfg.experimental.residual;
+        if !on || !(self.adapt.strength > 0.0) {
+            return Ok(());
+        }
+        let ws = &mut *self.ws;
+        let known = super::load::policy_at(
+            self.cfg,
+            self.features,
+            self.models,
+            cur,
+            &ws.acts,
+            &mut ws.phi,
+            &mut ws.ui,
+            &mut ws.pi,
+        )?;
+        if !known {
+            return Ok(());
+        }
+        // c + ε = u − (u0 − c) − û.
+        for (i, p) in ws.pi.iter_mut().enumerate() {
+            *p = cur.u[i] - (ws.u0[i] - ws.load_c[i]) - *p;
+        }
+        let gain = self.adapt.strength * self.dt / ad.load_time_constant;
+        self.load.learn(&ws.acts, &ws.load_c, &ws.pi, gain);
+        Ok(())
     }
 
     /// Every active field: its local dynamics learn `u → ẍ`, its controller the hindsight sample

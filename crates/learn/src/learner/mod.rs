@@ -13,6 +13,7 @@
 //! | `null_space.rs` | the null space of `Â` |
 //! | `models.rs` | the models made after the warm-up |
 //! | `adapt.rs` | re-adaptation when the local dynamics stop predicting |
+//! | `load.rs` | the load correction of `u0` while re-adapting |
 
 mod adapt;
 mod command;
@@ -23,6 +24,7 @@ mod features;
 pub(crate) mod fixture;
 mod guards;
 mod hindsight;
+mod load;
 mod models;
 mod nominal;
 mod null_space;
@@ -33,6 +35,7 @@ pub use adapt::AdaptationSignal;
 pub use command::{CommandSource, EXTRAPOLATION_CUTOFF};
 pub(crate) use features::Features;
 pub use guards::RateLimiter;
+pub use load::LoadCorrection;
 pub(crate) use models::Models;
 pub use state::Learner;
 pub(crate) use state::State;

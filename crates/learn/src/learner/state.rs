@@ -3,7 +3,7 @@
 
 use super::exploration::Noise;
 use super::stats::Scratch;
-use super::{AdaptationSignal, Features, LearnerStats, Models, RateLimiter};
+use super::{AdaptationSignal, Features, LearnerStats, LoadCorrection, Models, RateLimiter};
 use crate::config::{scaled, LearnerConfig};
 use crate::error::{LearnError, Result};
 use crate::forward::ForwardModel;
@@ -54,6 +54,8 @@ pub struct Learner {
     pub(crate) rate: RateLimiter,
     /// The re-adaptation's running level (not saved; see [`Learner::reset_adaptation`]).
     pub(crate) adapt: AdaptationSignal,
+    /// The load correction of `u0` learned while re-adapting (saved; empty until then).
+    pub(crate) load: LoadCorrection,
 }
 
 impl Learner {
@@ -94,12 +96,18 @@ impl Learner {
             gravity_frozen: false,
             ws,
             adapt: AdaptationSignal::default(),
+            load: LoadCorrection::default(),
         })
     }
 
     /// The re-adaptation's state (`adaptation.enabled`; all 0 while it is off).
     pub fn adaptation(&self) -> AdaptationSignal {
         self.adapt
+    }
+
+    /// The load correction of `u0` (`learner/load.rs`; empty unless the learner re-adapted).
+    pub fn load_correction(&self) -> &LoadCorrection {
+        &self.load
     }
 
     /// Starts the re-adaptation's running level afresh (it is not saved with the learner, so a

@@ -46,6 +46,10 @@ pub(crate) struct Scratch {
     pub z: Vec<f64>,
     pub ui: Vec<f64>,
     pub target: Vec<f64>,
+    /// The load correction `c` at the last relabelled state, and the policy's command for the
+    /// measured `ẍ` (`load.rs`).
+    pub load_c: Vec<f64>,
+    pub pi: Vec<f64>,
     /// `Â` (m×n), and the m-vector and m×m matrix of its null-space algebra.
     pub a_hat: Vec<f64>,
     pub y: Vec<f64>,
@@ -66,6 +70,8 @@ impl Scratch {
             z: vec![0.0; n],
             ui: vec![0.0; n],
             target: vec![0.0; n],
+            load_c: vec![0.0; n],
+            pi: vec![0.0; n],
             a_hat: vec![0.0; m * n],
             y: vec![0.0; m],
             s: vec![0.0; m * m],
