@@ -45,6 +45,13 @@ def summary(out: dict, source: str) -> str:
             f"({ratio(v.get('ratio_update_us_c_o3_native'))} / "
             f"{ratio(v.get('ratio_predict_us_c_o3_native'))} at -O3 native)"
         )
+        if "ratio_update_us_batch_c_o2" in v:
+            parts[-1] += (
+                f" or, timed as whole loops, {ratio(v.get('ratio_update_us_batch_c_o2'))} / "
+                f"{ratio(v.get('ratio_predict_us_batch_c_o2'))} "
+                f"({ratio(v.get('ratio_update_us_batch_c_o3_native'))} / "
+                f"{ratio(v.get('ratio_predict_us_batch_c_o3_native'))})"
+            )
     lwpr = "; ".join(parts) if parts else "not measured"
     d = out.get("dynamics")
     if d is None:

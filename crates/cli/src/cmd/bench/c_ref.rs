@@ -85,7 +85,15 @@ pub fn parse(stdout: &str) -> Result<Measured> {
     let m: Measured = serde_json::from_str(stdout.trim())
         .with_context(|| format!("the harness printed no result: {:?}", stdout.trim()))?;
     ensure!(
-        !m.nmse.is_empty() && m.update_us.is_finite() && m.predict_us.is_finite(),
+        !m.nmse.is_empty()
+            && [
+                m.update_us,
+                m.predict_us,
+                m.update_us_batch,
+                m.predict_us_batch
+            ]
+            .iter()
+            .all(|t| t.is_finite()),
         "the harness printed an incomplete result: {stdout:?}"
     );
     Ok(m)

@@ -59,6 +59,7 @@ pub fn render(out: &Value) -> String {
             r("predict_us"),
         );
     }
+    t += &loops(out);
     match out.get("dynamics") {
         Some(d) if d.get("skipped").is_some() => {
             let _ = writeln!(
@@ -81,6 +82,50 @@ pub fn render(out: &Value) -> String {
             }
         }
         None => {}
+    }
+    t
+}
+
+/// The table of the timings of whole loops (`*_us_batch`), where `out` has them (outputs of
+/// the command from before they were added have not).
+fn loops(out: &Value) -> String {
+    let sets: Vec<_> = out["lwpr"]
+        .as_object()
+        .into_iter()
+        .flatten()
+        .filter(|(_, v)| v.pointer("/rust/update_us_batch").is_some())
+        .collect();
+    if sets.is_empty() {
+        return String::new();
+    }
+    let mut t =
+        "\nThe same runs timed as whole loops (each training loop and test pass timed once, \
+        run a second time for it; the table above times every call on its own):\n\n"
+            .to_string();
+    t += "| data set | update µs crate / C -O2 / C -O3 native | predict µs crate / C -O2 / C -O3 native | C / crate update (O2, O3n) | C / crate predict (O2, O3n) |\n";
+    t += "|---|---|---|---|---|\n";
+    for (k, v) in sets {
+        let us = |c: &str| {
+            let f = |i: &str| num(v, &format!("/{i}/{c}"));
+            format!(
+                "{:.2} / {:.2} / {:.2}",
+                f("rust"),
+                f("c_o2"),
+                f("c_o3_native")
+            )
+        };
+        let r = |c: &str| {
+            let f = |i: &str| num(v, &format!("/ratio_{c}_{i}"));
+            format!("{:.2}× / {:.2}×", f("c_o2"), f("c_o3_native"))
+        };
+        let _ = writeln!(
+            t,
+            "| {k} | {} | {} | {} | {} |",
+            us("update_us_batch"),
+            us("predict_us_batch"),
+            r("update_us_batch"),
+            r("predict_us_batch"),
+        );
     }
     t
 }

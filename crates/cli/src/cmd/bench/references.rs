@@ -80,6 +80,8 @@ fn summary(runs: &[Measured]) -> Value {
         "n_rfs": col(|m| m.n_rfs as f64),
         "update_us": col(|m| m.update_us),
         "predict_us": col(|m| m.predict_us),
+        "update_us_batch": col(|m| m.update_us_batch),
+        "predict_us_batch": col(|m| m.predict_us_batch),
     })
 }
 
@@ -116,7 +118,12 @@ fn lwpr_set(a: &RefArgs, set: Set, cs: &[Harness]) -> Result<Value> {
         "updates": updates, "rust": rust});
     for (i, c) in cs.iter().enumerate() {
         let sum = summary(&runs[i]);
-        for k in ["update_us", "predict_us"] {
+        for k in [
+            "update_us",
+            "predict_us",
+            "update_us_batch",
+            "predict_us_batch",
+        ] {
             v[format!("ratio_{k}_{}", c.key)] =
                 json!(sum[k].as_f64().unwrap() / rust[k].as_f64().unwrap());
         }

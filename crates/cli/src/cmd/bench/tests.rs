@@ -64,7 +64,7 @@ fn the_crate_on_the_written_samples_is_the_bench_lwpr_run() {
 #[test]
 fn harness_json_is_parsed_and_bad_output_named() {
     let m = c_ref::parse(
-        "{\"nmse\": [0.03, 0.05], \"n_rfs\": 40, \"update_us\": 3.5, \"predict_us\": 0.7, \"updates\": 10, \"tests\": 4}\n",
+        "{\"nmse\": [0.03, 0.05], \"n_rfs\": 40, \"update_us\": 3.5, \"predict_us\": 0.7, \"update_us_batch\": 3.4, \"predict_us_batch\": 0.65, \"updates\": 10, \"tests\": 4}\n",
     )
     .unwrap();
     assert_eq!(
@@ -73,14 +73,21 @@ fn harness_json_is_parsed_and_bad_output_named() {
             nmse: vec![0.03, 0.05],
             n_rfs: 40,
             update_us: 3.5,
-            predict_us: 0.7
+            predict_us: 0.7,
+            update_us_batch: 3.4,
+            predict_us_batch: 0.65,
         }
     );
     assert!((m.nmse_mean() - 0.04).abs() < 1e-15);
     let err = c_ref::parse("Segmentation fault").unwrap_err();
     assert!(err.to_string().contains("Segmentation fault"), "{err}");
     assert!(
-        c_ref::parse("{\"nmse\": [], \"n_rfs\": 1, \"update_us\": 1, \"predict_us\": 1}").is_err()
+        c_ref::parse("{\"nmse\": [], \"n_rfs\": 1, \"update_us\": 1, \"predict_us\": 1, \"update_us_batch\": 1, \"predict_us_batch\": 1}").is_err()
+    );
+    // Without the timings of whole loops (a harness from before they were added).
+    assert!(
+        c_ref::parse("{\"nmse\": [0.1], \"n_rfs\": 1, \"update_us\": 1, \"predict_us\": 1}")
+            .is_err()
     );
 }
 
