@@ -25,6 +25,20 @@ impl TrueGain {
         d.norm() / self.b.norm().max(1e-300)
     }
 
+    /// The null-space error `‖(I − B⁺B)(v + Â⁺Â (u* − v) − u*)‖²` of the command that is
+    /// optimal for the learner's `Â` (m×n row-major) and nominal `v = û0`: the smallest
+    /// correction of `v` with `Â (u − v) = Â (u* − v)`. A floor of the command's null-space error
+    /// set by `Â` and `û0` alone. `None` if `Â Âᵀ` does not invert.
+    pub fn floor_null2(&self, a_hat: &[f64], v: &[f64], u_star: &[f64]) -> Option<f64> {
+        let (m, n) = (self.b.nrows(), self.b.ncols());
+        let a = nalgebra::DMatrix::from_fn(m, n, |r, c| a_hat[r * n + c]);
+        let s = (&a * a.transpose()).try_inverse()?;
+        let d = nalgebra::DVector::from_fn(n, |i, _| u_star[i] - v[i]);
+        let range = a.transpose() * (s * (&a * &d));
+        let u: Vec<f64> = (0..n).map(|i| v[i] + range[i]).collect();
+        Some(self.null_part2(&u, u_star))
+    }
+
     /// `‖(I − B⁺B)(u − v)‖²`, the part of `u − v` in the null space of `B`.
     pub fn null_part2(&self, u: &[f64], v: &[f64]) -> f64 {
         let e = nalgebra::DVector::from_fn(u.len(), |i, _| u[i] - v[i]);
