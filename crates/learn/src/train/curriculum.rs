@@ -118,6 +118,20 @@ impl Segment {
     }
 }
 
+/// Which of the path clock's holds are quiet: the exploration fades out with the clock's rate
+/// as it stops and is 0 while it holds, so the hold gives the static gravity model still
+/// samples of an arm that is not shaken (`docs/decisions.md`, D17).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum QuietHolds {
+    /// Exploration everywhere (the holds give the local dynamics excitation at rest).
+    None,
+    /// The final stop of each episode only.
+    Final,
+    /// Every stop.
+    All,
+}
+
 /// The path of one episode: the task path at a curriculum stage on a clock with stops.
 #[derive(Clone, Debug)]
 pub(crate) struct EpisodePath {
@@ -127,6 +141,8 @@ pub(crate) struct EpisodePath {
     segments: Vec<Segment>,
     /// Episode length (s), the final stop and hold included.
     pub seconds: f64,
+    /// Start of the final stop (s): its deceleration and hold.
+    final_stop: f64,
 }
 
 impl EpisodePath {
@@ -178,11 +194,13 @@ impl EpisodePath {
             push(&mut segments, &mut t, &mut tau, ts, 0.0, 1.0);
             left -= run;
         }
+        let final_stop = t;
         push(&mut segments, &mut t, &mut tau, ts, 1.0, 0.0);
         if th > 0.0 {
             push(&mut segments, &mut t, &mut tau, th, 0.0, 0.0);
         }
         Self {
+            final_stop,
             amplitude: stage[0],
             speed: stage[1],
             x0: traj.sample(0.0).x,
@@ -195,6 +213,23 @@ impl EpisodePath {
         self.segments
             .partition_point(|s| s.start <= t)
             .saturating_sub(1)
+    }
+
+    /// The clock's rate `τ̇` at episode time `t` relative to the stage speed: 1 while cruising,
+    /// 0 while holding, a half cosine in between.
+    pub fn rate(&self, t: f64) -> f64 {
+        self.segments[self.segment(t)].at(t).1
+    }
+
+    /// The exploration's gain at episode time `t` under `quiet` (`TrainConfig::quiet_holds`):
+    /// `floor + (1 − floor) τ̇` with the clock's rate `τ̇` where the holds are quiet (all of them,
+    /// or the final one from its deceleration on), 1 elsewhere.
+    pub fn exploration_gain(&self, t: f64, quiet: QuietHolds, floor: f64) -> f64 {
+        match quiet {
+            QuietHolds::None => 1.0,
+            QuietHolds::Final if t < self.final_stop => 1.0,
+            QuietHolds::Final | QuietHolds::All => floor + (1.0 - floor) * self.rate(t),
+        }
     }
 
     /// The target at episode time `t`: `x0 + a (x(τ) − x0)` with `τ` the clock's path time
