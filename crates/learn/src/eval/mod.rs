@@ -261,9 +261,10 @@ impl Comparison<'_> {
             .as_ref()
             .map_or(0.0, |t| t.null_part2(&self.u0_hat, &self.u0));
         let has_gain = learner.input_gain(q, qd, &mut self.a_hat)?;
-        let floor_null2 = truth.as_ref().filter(|_| has_gain).and_then(|t| {
-            t.floor_null2(&self.a_hat, &self.u0_hat, &self.u_star)
-        });
+        let floor_null2 = truth
+            .as_ref()
+            .filter(|_| has_gain)
+            .and_then(|t| t.floor_null2(&self.a_hat, &self.u0_hat, &self.u_star));
         let gain_err = truth
             .filter(|_| has_gain)
             .map(|t| t.gain_error(&self.a_hat));

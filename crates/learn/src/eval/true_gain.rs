@@ -69,4 +69,24 @@ mod tests {
         let null = t.null_part2(&u, &v);
         assert!(null > 0.0 && null < 5.25);
     }
+
+    /// The floor of the command's null-space error: with the true gain as `Â` it is the
+    /// nominal's null-space error alone; a wrong `Â` raises it even with a perfect nominal.
+    #[test]
+    fn the_floor_is_the_nominal_error_for_the_true_gain() {
+        let model = robots::planar3();
+        let mut data = Data::new(&model);
+        let q = [0.3, 0.5, -0.4];
+        osrl_dynamics::crba(&model, &mut data, &q).unwrap();
+        osrl_dynamics::jacobian(&model, &mut data, &q).unwrap();
+        let t = TrueGain::new(&data, model.task_axes()).unwrap();
+        let b: Vec<f64> = (0..6).map(|k| t.b[(k / 3, k % 3)]).collect();
+        let (u_star, v) = ([2.0, -1.0, 0.7], [1.5, -0.2, 0.1]);
+        let floor = t.floor_null2(&b, &v, &u_star).unwrap();
+        assert!((floor - t.null_part2(&v, &u_star)).abs() < 1e-12, "{floor}");
+        let mut wrong = b.clone();
+        wrong[2] += 0.3 * b.iter().map(|x| x.abs()).fold(0.0, f64::max);
+        assert!(t.floor_null2(&wrong, &u_star, &u_star).unwrap() < 1e-20);
+        assert!(t.floor_null2(&wrong, &[0.0; 3], &u_star).unwrap() > 1e-6);
+    }
 }

@@ -4,7 +4,6 @@
 
 use super::exploration::explore;
 use super::nominal::nominal_into;
-use super::null_space::project_null;
 use super::{Learner, State};
 use crate::error::{LearnError, Result};
 use crate::local::confidence;
@@ -177,30 +176,6 @@ impl Learner {
             );
         }
         Ok(blend.source)
-    }
-
-    /// The command projection (`controllers.command_projection`): the learned part `ū` in `u`
-    /// loses the share `κ_c` of its part in the null space of the blended `Â` at `q` (active
-    /// fields in `ws.acts`); unchanged without an `Â` or with a singular `Â Âᵀ`.
-    fn project_command(&mut self, q: &[f64], u: &mut [f64]) {
-        let kc = self.cfg.controllers.command_projection;
-        let State::Ready(models) = &self.state else {
-            return;
-        };
-        if kc <= 0.0 || !self.cfg.experimental.residual {
-            return;
-        }
-        let ws = &mut self.ws;
-        if !models.blended_gain(&self.features, &ws.acts, q, &mut ws.a_hat) {
-            return;
-        }
-        ws.z.copy_from_slice(u);
-        let m = ws.y.len();
-        if project_null(&ws.a_hat, &mut ws.z, m, &mut ws.y, &mut ws.s) {
-            for (v, z) in u.iter_mut().zip(&ws.z) {
-                *v -= kc * z;
-            }
-        }
     }
 
     /// The nominal `u0` as the command where no trained controller is near (counted).

@@ -26,6 +26,7 @@ mod hindsight;
 mod models;
 mod nominal;
 mod null_space;
+mod projection;
 mod state;
 mod stats;
 

@@ -120,7 +120,11 @@ impl Learner {
     /// set): the driver fades exploration out where it wants still samples (the path clock's
     /// holds, `TrainConfig::explore_with_clock`). Not saved.
     pub fn set_exploration_gain(&mut self, gain: f64) {
-        self.noise.gain = if gain.is_nan() { 1.0 } else { gain.clamp(0.0, 1.0) };
+        self.noise.gain = if gain.is_nan() {
+            1.0
+        } else {
+            gain.clamp(0.0, 1.0)
+        };
     }
 
     /// Starts a new sequence of commands: the command last sent to the robot (`None`: unknown,

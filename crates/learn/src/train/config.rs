@@ -188,6 +188,10 @@ impl TrainConfig {
                 "brake_switch_seconds",
                 finite_nonneg(self.brake_switch_seconds),
             ),
+            (
+                "quiet_hold_gain",
+                (0.0..=1.0).contains(&self.quiet_hold_gain),
+            ),
         ];
         match checks.iter().find(|(_, ok)| !ok) {
             Some((what, _)) => Err(LearnError::InvalidConfig(format!(

@@ -323,4 +323,52 @@ mod tests {
             assert!((a.x - b.x).norm() < 1e-15 && (a.xdd - b.xdd).norm() < 1e-12);
         }
     }
+
+    /// The exploration's gain under quiet holds: 1 everywhere without them; with all holds
+    /// quiet it is `floor` wherever the target is held still and 1 while the path cruises; with
+    /// the final one only, 1 before the final stop, `floor` in its hold; it never leaves
+    /// [floor, 1] and changes smoothly (by the clock's half cosine).
+    #[test]
+    fn quiet_holds_fade_the_exploration_out_where_the_target_is_held() {
+        use super::QuietHolds;
+        let model = robots::planar3();
+        let traj = TrajectoryConfig::default().build(&model).unwrap();
+        let cfg = CurriculumConfig::default();
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
+        let ep = EpisodePath::new(&traj, [1.0, 1.0], 30.0, &cfg, &mut rng);
+        let floor = 0.2;
+        let (mut held, mut held_before_end, mut prev) = (0, 0, [1.0; 3]);
+        for k in 0..(ep.seconds / 0.002) as usize {
+            let t = k as f64 * 0.002;
+            let g = [QuietHolds::None, QuietHolds::All, QuietHolds::Final]
+                .map(|quiet| ep.exploration_gain(t, quiet, floor));
+            assert_eq!(g[0], 1.0);
+            for (a, b) in g.iter().zip(&prev) {
+                assert!(
+                    (floor..=1.0).contains(a) && (a - b).abs() < 0.01,
+                    "t {t}: {g:?}"
+                );
+            }
+            // The clock holds (the path's own start at rest does not count).
+            let still = ep.rate(t) == 0.0;
+            assert!(!still || ep.sample(&traj, t).xd.norm() == 0.0);
+            if still {
+                held += 1;
+                assert!((g[1] - floor).abs() < 1e-12, "t {t}: {g:?}");
+                if t < ep.final_stop {
+                    held_before_end += 1;
+                    assert_eq!(g[2], 1.0, "t {t}");
+                } else {
+                    assert!((g[2] - floor).abs() < 1e-12, "t {t}: {g:?}");
+                }
+            } else if t < ep.final_stop && ep.rate(t) == 1.0 {
+                assert_eq!(g[1], 1.0, "t {t}");
+            }
+            prev = g;
+        }
+        assert!(
+            held > 1000 && held_before_end > 100,
+            "{held} {held_before_end}"
+        );
+    }
 }
