@@ -45,9 +45,33 @@ pub fn summary_json(s: &TrainSummary, final_eval: &EvalSummary, robot: &str) -> 
         "rejected_share": rejected(s).1,
         "unsettled_starts": s.unsettled_starts,
         "learning_curve": curve_points(&s.learning_curve),
+        "error_split_curve": error_split_curve(s),
     });
     for (k, v) in extra.as_object().into_iter().flatten() {
         o.insert(k.clone(), v.clone());
     }
     Ok(j)
+}
+
+/// The split of the command error at every evaluation of the learning curve (`docs/learner.md`,
+/// "Evaluation"): its null-space part, the learned `u0`'s error and its null-space part, the
+/// error of `Â`, the cost ratio and the support share; `null` where an evaluation diverged.
+fn error_split_curve(s: &TrainSummary) -> Vec<Value> {
+    osrl_experiments::stats::dedup_curve(&s.learning_curve)
+        .iter()
+        .map(|(t, e)| {
+            let ok = !e.diverged && e.command_nmse.is_finite();
+            let v = |x: f64| if ok { json!(x) } else { Value::Null };
+            json!({
+                "sim_minutes": t,
+                "command_nmse_null": v(e.command_nmse_null),
+                "nominal_nmse": v(e.nominal_nmse),
+                "nominal_nmse_null": v(e.nominal_nmse_null),
+                "gain_error": v(e.gain_error),
+                "floor_nmse_null": v(e.floor_nmse_null),
+                "command_cost_ratio": v(e.command_cost_ratio),
+                "support_share": v(e.support_share),
+            })
+        })
+        .collect()
 }

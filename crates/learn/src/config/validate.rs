@@ -95,6 +95,12 @@ impl LearnerConfig {
                 c.null_space_shrink
             )
         })?;
+        ensure((0.0..=1.0).contains(&c.command_projection), || {
+            format!(
+                "controllers.command_projection {} must be in [0, 1]",
+                c.command_projection
+            )
+        })?;
         ensure(c.prior_weight > 0.0 && c.prior_weight.is_finite(), || {
             format!(
                 "controllers.prior_weight {} must be finite and > 0",

@@ -246,6 +246,7 @@ struct Split {
     nom_null2: f64,
     nom2: f64,
     gain_err: Option<f64>,
+    floor_null2: Option<f64>,
 }
 
 impl Comparison<'_> {
@@ -260,6 +261,10 @@ impl Comparison<'_> {
             .as_ref()
             .map_or(0.0, |t| t.null_part2(&self.u0_hat, &self.u0));
         let has_gain = learner.input_gain(q, qd, &mut self.a_hat)?;
+        let floor_null2 = truth
+            .as_ref()
+            .filter(|_| has_gain)
+            .and_then(|t| t.floor_null2(&self.a_hat, &self.u0_hat, &self.u_star));
         let gain_err = truth
             .filter(|_| has_gain)
             .map(|t| t.gain_error(&self.a_hat));
@@ -274,6 +279,7 @@ impl Comparison<'_> {
             nom_null2,
             nom2,
             gain_err,
+            floor_null2,
         })
     }
 
@@ -288,6 +294,10 @@ impl Comparison<'_> {
                 if let Some(g) = split.gain_err {
                     acc.gain_err += g;
                     acc.gain_count += 1;
+                }
+                if let Some(f) = split.floor_null2 {
+                    acc.floor_null2 += f;
+                    acc.floor_count += 1;
                 }
             }
         }

@@ -28,6 +28,12 @@ pub struct EvalResult {
     /// against the true `A = J M⁻¹` (steps where the learner has one).
     #[serde(default)]
     pub gain_error: f64,
+    /// The null-space error (same normalisation) of the command that would be optimal for the
+    /// learner's own `Â` and `û0` — `û0 + Â⁺Â (u* − û0)` — over the steps where it has an `Â`:
+    /// the floor that `Â` and the learned `u0` set for `command_nmse_null`; the rest of it is the
+    /// local controllers' own error.
+    #[serde(default)]
+    pub floor_nmse_null: f64,
     /// The scales behind the ratios: summed per-joint variance of `u*` (N²·m²) and mean
     /// `‖u* − u0‖²` (N²·m²).
     #[serde(default)]

@@ -142,10 +142,12 @@ impl Learner {
         }
         let x = (blend.sum_w / self.cfg.controllers.prior_weight).min(1.0);
         let kappa = x * x * (3.0 - 2.0 * x);
-        let sigma = self.cfg.exploration.scale * kappa * blend.sum_sigma / blend.sum_w;
+        let sigma =
+            self.noise.gain * self.cfg.exploration.scale * kappa * blend.sum_sigma / blend.sum_w;
         for v in u.iter_mut() {
             *v *= kappa / blend.sum_w;
         }
+        self.project_command(q, u);
         if self.cfg.experimental.residual {
             let u0 = &mut self.ws.u0;
             nominal_into(

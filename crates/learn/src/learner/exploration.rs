@@ -103,6 +103,9 @@ impl Knots {
 pub(crate) struct Noise {
     iso: Knots,
     null: Knots,
+    /// Factor on the noise's standard deviation set by the driver (`Learner::set_exploration_gain`),
+    /// in [0, 1]; 1 unless set.
+    pub gain: f64,
 }
 
 impl Noise {
@@ -121,6 +124,7 @@ impl Noise {
         Self {
             null: iso.clone(),
             iso,
+            gain: 1.0,
         }
     }
 

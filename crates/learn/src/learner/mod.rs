@@ -28,6 +28,7 @@ mod load;
 mod models;
 mod nominal;
 mod null_space;
+mod projection;
 mod state;
 mod stats;
 

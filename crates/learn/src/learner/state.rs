@@ -126,6 +126,17 @@ impl Learner {
         Ok(())
     }
 
+    /// Scales the exploration noise of the next commands by `gain` (clamped to [0, 1]; 1 until
+    /// set): the driver fades exploration out where it wants still samples (the path clock's
+    /// holds, `TrainConfig::explore_with_clock`). Not saved.
+    pub fn set_exploration_gain(&mut self, gain: f64) {
+        self.noise.gain = if gain.is_nan() {
+            1.0
+        } else {
+            gain.clamp(0.0, 1.0)
+        };
+    }
+
     /// Starts a new sequence of commands: the command last sent to the robot (`None`: unknown,
     /// the next command is not rate limited) and the exploration noise back at 0.
     pub fn start_episode(&mut self, last_sent: Option<&[f64]>) {

@@ -82,6 +82,14 @@ pub struct TrainConfig {
     pub learn_returning_home: bool,
     /// Exploration noise during the on-policy phase. Default true.
     pub explore: bool,
+    /// Which holds of the path clock are quiet: there the exploration's amplitude follows the
+    /// clock's rate (faded out by its half cosine as it stops, 0 while it holds), so the static
+    /// gravity model gets still samples of an arm that the noise does not shake
+    /// (`docs/decisions.md`, D20). Default `none`: quiet holds lower sarcos7's `u0` error 2–3×
+    /// but cost the local dynamics and controllers their excitation at rest (planar3 loses).
+    pub quiet_holds: super::QuietHolds,
+    /// The exploration's gain in a quiet hold, in [0, 1]. Default 0.
+    pub quiet_hold_gain: f64,
     /// When the driver switches between its PD commands and the learned controller (an
     /// episode's start and end), the sent command fades from the last one to the new source's
     /// over this long (s), instead of jumping. Default 0.25.
@@ -124,6 +132,8 @@ impl Default for TrainConfig {
             learn_on_policy: true,
             learn_returning_home: true,
             explore: true,
+            quiet_holds: super::QuietHolds::None,
+            quiet_hold_gain: 0.0,
             switch_seconds: 0.25,
             first_switch_seconds: 5.0,
             brake_switch_seconds: 0.05,
@@ -177,6 +187,10 @@ impl TrainConfig {
             (
                 "brake_switch_seconds",
                 finite_nonneg(self.brake_switch_seconds),
+            ),
+            (
+                "quiet_hold_gain",
+                (0.0..=1.0).contains(&self.quiet_hold_gain),
             ),
         ];
         match checks.iter().find(|(_, ok)| !ok) {

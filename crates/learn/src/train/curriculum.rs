@@ -119,6 +119,20 @@ impl Segment {
     }
 }
 
+/// Which of the path clock's holds are quiet: the exploration fades out with the clock's rate
+/// as it stops and is 0 while it holds, so the hold gives the static gravity model still
+/// samples of an arm that is not shaken (`docs/decisions.md`, D20).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum QuietHolds {
+    /// Exploration everywhere (the holds give the local dynamics excitation at rest).
+    None,
+    /// The final stop of each episode only.
+    Final,
+    /// Every stop.
+    All,
+}
+
 /// The path of one episode: the task path at a curriculum stage on a clock with stops.
 #[derive(Clone, Debug)]
 pub(crate) struct EpisodePath {
@@ -128,6 +142,8 @@ pub(crate) struct EpisodePath {
     segments: Vec<Segment>,
     /// Episode length (s), the final stop and hold included.
     pub seconds: f64,
+    /// Start of the final stop (s): its deceleration and hold.
+    final_stop: f64,
 }
 
 impl EpisodePath {
@@ -179,11 +195,13 @@ impl EpisodePath {
             push(&mut segments, &mut t, &mut tau, ts, 0.0, 1.0);
             left -= run;
         }
+        let final_stop = t;
         push(&mut segments, &mut t, &mut tau, ts, 1.0, 0.0);
         if th > 0.0 {
             push(&mut segments, &mut t, &mut tau, th, 0.0, 0.0);
         }
         Self {
+            final_stop,
             amplitude: stage[0],
             speed: stage[1],
             x0: traj.sample(0.0).x,
@@ -196,6 +214,23 @@ impl EpisodePath {
         self.segments
             .partition_point(|s| s.start <= t)
             .saturating_sub(1)
+    }
+
+    /// The clock's rate `τ̇` at episode time `t` relative to the stage speed: 1 while cruising,
+    /// 0 while holding, a half cosine in between.
+    pub fn rate(&self, t: f64) -> f64 {
+        self.segments[self.segment(t)].at(t).1
+    }
+
+    /// The exploration's gain at episode time `t` under `quiet` (`TrainConfig::quiet_holds`):
+    /// `floor + (1 − floor) τ̇` with the clock's rate `τ̇` where the holds are quiet (all of them,
+    /// or the final one from its deceleration on), 1 elsewhere.
+    pub fn exploration_gain(&self, t: f64, quiet: QuietHolds, floor: f64) -> f64 {
+        match quiet {
+            QuietHolds::None => 1.0,
+            QuietHolds::Final if t < self.final_stop => 1.0,
+            QuietHolds::Final | QuietHolds::All => floor + (1.0 - floor) * self.rate(t),
+        }
     }
 
     /// The target at episode time `t`: `x0 + a (x(τ) − x0)` with `τ` the clock's path time
@@ -288,5 +323,53 @@ mod tests {
             let (a, b) = (ep1.sample(&traj, t), traj.sample(t));
             assert!((a.x - b.x).norm() < 1e-15 && (a.xdd - b.xdd).norm() < 1e-12);
         }
+    }
+
+    /// The exploration's gain under quiet holds: 1 everywhere without them; with all holds
+    /// quiet it is `floor` wherever the target is held still and 1 while the path cruises; with
+    /// the final one only, 1 before the final stop, `floor` in its hold; it never leaves
+    /// [floor, 1] and changes smoothly (by the clock's half cosine).
+    #[test]
+    fn quiet_holds_fade_the_exploration_out_where_the_target_is_held() {
+        use super::QuietHolds;
+        let model = robots::planar3();
+        let traj = TrajectoryConfig::default().build(&model).unwrap();
+        let cfg = CurriculumConfig::default();
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
+        let ep = EpisodePath::new(&traj, [1.0, 1.0], 30.0, &cfg, &mut rng);
+        let floor = 0.2;
+        let (mut held, mut held_before_end, mut prev) = (0, 0, [1.0; 3]);
+        for k in 0..(ep.seconds / 0.002) as usize {
+            let t = k as f64 * 0.002;
+            let g = [QuietHolds::None, QuietHolds::All, QuietHolds::Final]
+                .map(|quiet| ep.exploration_gain(t, quiet, floor));
+            assert_eq!(g[0], 1.0);
+            for (a, b) in g.iter().zip(&prev) {
+                assert!(
+                    (floor..=1.0).contains(a) && (a - b).abs() < 0.01,
+                    "t {t}: {g:?}"
+                );
+            }
+            // The clock holds (the path's own start at rest does not count).
+            let still = ep.rate(t) == 0.0;
+            assert!(!still || ep.sample(&traj, t).xd.norm() == 0.0);
+            if still {
+                held += 1;
+                assert!((g[1] - floor).abs() < 1e-12, "t {t}: {g:?}");
+                if t < ep.final_stop {
+                    held_before_end += 1;
+                    assert_eq!(g[2], 1.0, "t {t}");
+                } else {
+                    assert!((g[2] - floor).abs() < 1e-12, "t {t}: {g:?}");
+                }
+            } else if t < ep.final_stop && ep.rate(t) == 1.0 {
+                assert_eq!(g[1], 1.0, "t {t}");
+            }
+            prev = g;
+        }
+        assert!(
+            held > 1000 && held_before_end > 100,
+            "{held} {held_before_end}"
+        );
     }
 }

@@ -19,7 +19,7 @@ mod safety;
 mod trainer;
 
 pub use config::{BabbleConfig, TrainConfig};
-pub use curriculum::CurriculumConfig;
+pub use curriculum::{CurriculumConfig, QuietHolds};
 pub use observer::{EpisodeReport, Observer, OnEvaluation, Phase, Progress};
 pub use paths::PathSource;
 pub use safety::{StepPoint, STEP_BIN_SECONDS};

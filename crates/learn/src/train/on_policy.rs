@@ -110,6 +110,8 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
         let (x, xd) = (prev.x.as_slice(), prev.xd.as_slice());
         reference_acceleration(&self.cfg.gains, &target, self.axes, x, xd, xdd_ref);
         let rng = self.cfg.explore.then_some(&mut self.rng);
+        let gain = path.exploration_gain(t, self.cfg.quiet_holds, self.cfg.quiet_hold_gain);
+        self.learner.set_exploration_gain(gain);
         let (q, qd) = (prev.q.as_slice(), prev.qd.as_slice());
         self.learner.command(q, qd, xdd_ref, rng, &mut self.u)?;
         self.step()?;

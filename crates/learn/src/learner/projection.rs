@@ -1,0 +1,92 @@
+//! The command projection (`controllers.command_projection`, `docs/decisions.md` D20): the
+//! learned part `ū` of the command loses the share `κ_c` of its part in the null space of the
+//! blended `Â`, `ū ← ū − κ_c (I − Â⁺Â) ū` — the same task acceleration to first order, in the
+//! minimum-norm form of eq. 7's `u* − u0`.
+
+use super::null_space::project_null;
+use super::{Learner, State};
+
+impl Learner {
+    /// The command projection (`controllers.command_projection`): the learned part `ū` in `u`
+    /// loses the share `κ_c` of its part in the null space of the blended `Â` at `q` (active
+    /// fields in `ws.acts`); unchanged without an `Â` or with a singular `Â Âᵀ`.
+    pub(super) fn project_command(&mut self, q: &[f64], u: &mut [f64]) {
+        let kc = self.cfg.controllers.command_projection;
+        let State::Ready(models) = &self.state else {
+            return;
+        };
+        if kc <= 0.0 || !self.cfg.experimental.residual {
+            return;
+        }
+        let ws = &mut self.ws;
+        if !models.blended_gain(&self.features, &ws.acts, q, &mut ws.a_hat) {
+            return;
+        }
+        ws.z.copy_from_slice(u);
+        let m = ws.y.len();
+        if project_null(&ws.a_hat, &mut ws.z, m, &mut ws.y, &mut ws.s) {
+            for (v, z) in u.iter_mut().zip(&ws.z) {
+                *v -= kc * z;
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::learner::fixture;
+
+    /// `Â (u − u0)`, the null-space part under `Â` of `u − u0` and `|u − u0|` for the command
+    /// (no exploration) of `learner` at its last state with `κ_c = kc`.
+    fn task_and_null(
+        learner: &mut crate::Learner,
+        last: &osrl_dynamics::Measurement,
+        kc: f64,
+    ) -> (Vec<f64>, f64, f64) {
+        learner.cfg.controllers.command_projection = kc;
+        let (q, qd) = (last.q.as_slice().to_vec(), last.qd.as_slice().to_vec());
+        let (mut u, mut u0, mut a) = ([0.0; 3], [0.0; 3], [0.0; 6]);
+        learner.start_episode(None);
+        learner
+            .command::<rand_chacha::ChaCha8Rng>(&q, &qd, &[0.3, -0.2], None, &mut u)
+            .unwrap();
+        learner.nominal(&q, &qd, &mut u0).unwrap();
+        assert!(learner.input_gain(&q, &qd, &mut a).unwrap());
+        let du: Vec<f64> = (0..3).map(|j| u[j] - u0[j]).collect();
+        let task: Vec<f64> = (0..2)
+            .map(|k| (0..3).map(|j| a[k * 3 + j] * du[j]).sum())
+            .collect();
+        // The null space of a 2×3 Â is spanned by the cross product of its rows.
+        let (r0, r1) = (&a[..3], &a[3..]);
+        let nv = [
+            r0[1] * r1[2] - r0[2] * r1[1],
+            r0[2] * r1[0] - r0[0] * r1[2],
+            r0[0] * r1[1] - r0[1] * r1[0],
+        ];
+        let nn: f64 = nv.iter().map(|v| v * v).sum::<f64>().sqrt();
+        let null = (0..3).map(|j| du[j] * nv[j] / nn).sum::<f64>();
+        let norm = du.iter().map(|v| v * v).sum::<f64>().sqrt();
+        (task, null.abs(), norm)
+    }
+
+    /// With `κ_c = 1` the learned part has no component in the null space of `Â` and the same
+    /// `Â (u − u0)` as the plain blend (`κ_c = 0`) at the same state of the same learner: the
+    /// projection changes the redundancy resolution, not the task.
+    #[test]
+    fn the_projected_command_keeps_the_task_part_and_drops_the_null_part() {
+        let (mut learner, _, last) = fixture::ready(fixture::config(), 200, 2000);
+        let (task0, null0, norm0) = task_and_null(&mut learner, &last, 0.0);
+        let (task1, null1, norm1) = task_and_null(&mut learner, &last, 1.0);
+        assert!(
+            null0 > 1e-6 * norm0,
+            "the plain blend has a null part: {null0}"
+        );
+        assert!(null1 <= 1e-9 * (1.0 + norm1), "{null1} vs |du| {norm1}");
+        for (a, b) in task0.iter().zip(&task1) {
+            assert!(
+                (a - b).abs() <= 1e-9 * (1.0 + a.abs()),
+                "{task0:?} vs {task1:?}"
+            );
+        }
+    }
+}
