@@ -57,7 +57,18 @@ enum Command {
     Bench(cmd::bench::Args),
 }
 
+/// A reader that closes the pipe early (`osrl eval ... --json | head -c 100`) ends the process
+/// as it ends `cat`: Rust ignores SIGPIPE by default, and every `println!` would then panic.
+fn default_sigpipe() {
+    #[cfg(unix)]
+    // SAFETY: called first in `main`, before any thread exists; SIG_DFL is a valid handler.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
+}
+
 fn main() {
+    default_sigpipe();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Lwpr(a) => cmd::lwpr::run(a),

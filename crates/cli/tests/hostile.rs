@@ -133,3 +133,31 @@ fn lwpr_fit_on_twenty_thousand_columns_is_refused_before_allocating() {
         &["19999 inputs", "accepted 1–1000"],
     );
 }
+
+/// `osrl … | head -c 1`: a reader that closes the pipe before the output is written ends the
+/// process quietly (as `cat`), not with a panic on the broken pipe.
+#[cfg(unix)]
+#[test]
+fn a_closed_stdout_pipe_is_not_a_panic() {
+    use std::os::unix::process::ExitStatusExt;
+    use std::process::{Command, Stdio};
+    let mut child = Command::new(env!("CARGO_BIN_EXE_osrl"))
+        .args(["robot", "--robot", "sarcos7", "--json"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("run osrl");
+    drop(child.stdout.take()); // the reader is gone before anything is printed
+    let out = child.wait_with_output().expect("wait for osrl");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!err.contains("panicked"), "{err}");
+    assert_ne!(out.status.code(), Some(101), "exit as a panic: {err}");
+    if !out.status.success() {
+        assert_eq!(
+            out.status.signal(),
+            Some(libc::SIGPIPE),
+            "{:?} {err}",
+            out.status
+        );
+    }
+}
