@@ -40,22 +40,8 @@ struct Saved {
     models: Option<Models>,
     stats: LearnerStats,
     gravity_frozen: bool,
-    /// The load correction (`learner/load.rs`), last so that a file written before it existed
-    /// (which ends after `gravity_frozen`) still reads, with an empty correction.
+    /// The load correction (`learner/load.rs`).
     load: LoadCorrection,
-}
-
-/// [`Saved`] as written before the load correction existed.
-#[derive(Deserialize)]
-struct SavedBeforeLoad {
-    config_json: String,
-    n: usize,
-    m: usize,
-    dt: f64,
-    warm_up: Vec<Measurement>,
-    models: Option<Models>,
-    stats: LearnerStats,
-    gravity_frozen: bool,
 }
 
 /// FNV-1a over the payload: detects corruption that would still parse.
@@ -119,23 +105,8 @@ impl Learner {
         if checksum(payload) != sum {
             return Err(bad("checksum mismatch: the file is corrupted".into()));
         }
-        let s: Saved = match postcard::from_bytes::<Saved>(payload) {
-            Ok(s) => s,
-            Err(e) => match postcard::from_bytes::<SavedBeforeLoad>(payload) {
-                Ok(old) => Saved {
-                    config_json: old.config_json,
-                    n: old.n,
-                    m: old.m,
-                    dt: old.dt,
-                    warm_up: old.warm_up,
-                    models: old.models,
-                    stats: old.stats,
-                    gravity_frozen: old.gravity_frozen,
-                    load: LoadCorrection::default(),
-                },
-                Err(_) => return Err(bad(format!("malformed payload: {e}"))),
-            },
-        };
+        let s: Saved =
+            postcard::from_bytes(payload).map_err(|e| bad(format!("malformed payload: {e}")))?;
         let cfg: LearnerConfig =
             serde_json::from_str(&s.config_json).map_err(|e| bad(format!("config: {e}")))?;
         let mut learner = Learner::new(s.n, s.m, s.dt, cfg)?;
@@ -170,30 +141,16 @@ impl Learner {
 
 #[cfg(test)]
 mod tests {
-    use super::{checksum, MAGIC};
     use crate::learner::fixture;
     use crate::Learner;
     use lwpr::{Activation, RfId};
 
-    /// The load correction is saved and read back; a file written before it existed (the same
-    /// payload without its trailing empty map) reads with an empty correction.
+    /// The load correction is saved and read back.
     #[test]
-    fn the_load_correction_round_trips_and_older_files_still_read() {
+    fn the_load_correction_round_trips() {
         let (mut learner, _, _) = fixture::ready(fixture::config(), 200, 50);
-        let bytes = learner.to_bytes().unwrap();
-        // An empty map is one byte (its length, 0) at the end of the payload.
-        assert_eq!(*bytes.last().unwrap(), 0);
-        let payload = &bytes[28..bytes.len() - 1];
-        let mut old = Vec::new();
-        old.extend_from_slice(MAGIC);
-        old.extend_from_slice(&bytes[8..12]);
-        old.extend_from_slice(&(payload.len() as u64).to_le_bytes());
-        old.extend_from_slice(&checksum(payload).to_le_bytes());
-        old.extend_from_slice(payload);
-        let back = Learner::from_bytes(&old).unwrap();
+        let back = Learner::from_bytes(&learner.to_bytes().unwrap()).unwrap();
         assert!(back.load_correction().is_empty());
-        assert_eq!(back.to_bytes().unwrap(), bytes);
-
         let acts = [Activation {
             id: RfId(3),
             w: 1.0,

@@ -31,19 +31,8 @@ pub fn render(out: &Value) -> String {
             let _ = writeln!(t, "| {k} | skipped: {} | | | | | | | |", s(why));
             continue;
         }
-        let us = |c: &str| {
-            let f = |i: &str| num(v, &format!("/{i}/{c}"));
-            format!(
-                "{:.2} / {:.2} / {:.2}",
-                f("rust"),
-                f("c_o2"),
-                f("c_o3_native")
-            )
-        };
-        let r = |c: &str| {
-            let f = |i: &str| num(v, &format!("/ratio_{c}_{i}"));
-            format!("{:.2}× / {:.2}×", f("c_o2"), f("c_o3_native"))
-        };
+        let us = |c: &str| times(v, c);
+        let r = |c: &str| ratios(v, c);
         let _ = writeln!(
             t,
             "| {k} | {} × {} | {} | {} | {} / {} | {} | {} | {} | {} |",
@@ -86,6 +75,23 @@ pub fn render(out: &Value) -> String {
     t
 }
 
+/// "crate / C -O2 / C -O3 native" µs of the timing `c` (`update_us`, `predict_us_batch`, ...).
+fn times(v: &Value, c: &str) -> String {
+    let f = |i: &str| num(v, &format!("/{i}/{c}"));
+    format!(
+        "{:.2} / {:.2} / {:.2}",
+        f("rust"),
+        f("c_o2"),
+        f("c_o3_native")
+    )
+}
+
+/// "C -O2 / crate, C -O3 native / crate" of the timing `c`.
+fn ratios(v: &Value, c: &str) -> String {
+    let f = |i: &str| num(v, &format!("/ratio_{c}_{i}"));
+    format!("{:.2}× / {:.2}×", f("c_o2"), f("c_o3_native"))
+}
+
 /// The table of the timings of whole loops (`*_us_batch`), where `out` has them (outputs of
 /// the command from before they were added have not).
 fn loops(out: &Value) -> String {
@@ -105,19 +111,8 @@ fn loops(out: &Value) -> String {
     t += "| data set | update µs crate / C -O2 / C -O3 native | predict µs crate / C -O2 / C -O3 native | C / crate update (O2, O3n) | C / crate predict (O2, O3n) |\n";
     t += "|---|---|---|---|---|\n";
     for (k, v) in sets {
-        let us = |c: &str| {
-            let f = |i: &str| num(v, &format!("/{i}/{c}"));
-            format!(
-                "{:.2} / {:.2} / {:.2}",
-                f("rust"),
-                f("c_o2"),
-                f("c_o3_native")
-            )
-        };
-        let r = |c: &str| {
-            let f = |i: &str| num(v, &format!("/ratio_{c}_{i}"));
-            format!("{:.2}× / {:.2}×", f("c_o2"), f("c_o3_native"))
-        };
+        let us = |c: &str| times(v, c);
+        let r = |c: &str| ratios(v, c);
         let _ = writeln!(
             t,
             "| {k} | {} | {} | {} | {} |",
