@@ -194,6 +194,24 @@ impl GravityModel {
         }
     }
 
+    /// `ĝ(q)` into `g` from every trustworthy field, without LWPR's cutoff
+    /// ([`Lwpr::predict_everywhere`]): continuous in `q`, and defined far from the data (the
+    /// nearest fields' models at the edge of their support). Returns `ln Σ w`, the log of the
+    /// model's total activation at `q`, or `None` (and `g` zeros) while no field is trustworthy.
+    pub fn predict_everywhere(&mut self, q: &[f64], g: &mut [f64]) -> Result<Option<f64>> {
+        let n = self.n;
+        self.x[..n].copy_from_slice(q);
+        self.x[n..].fill(0.0);
+        match self.lwpr.predict_everywhere(&self.x, g) {
+            Ok(ln_sum) => Ok(Some(ln_sum)),
+            Err(LwprError::NoActiveRf { .. }) => {
+                g.fill(0.0);
+                Ok(None)
+            }
+            Err(e) => Err(e.into()),
+        }
+    }
+
     /// Re-creates the skipped query buffers after deserialisation.
     pub(crate) fn restore_buffers(&mut self) {
         self.x = vec![0.0; n_inputs(self.n, self.products)];

@@ -34,6 +34,14 @@ pub struct Local {
     pub ess: f64,
     /// The learner's sample count when its field was last active above the cutoff (or created).
     pub last_active: u64,
+    /// The command's `β` before the last M-step (`controllers.step_spread`): the controller
+    /// commands with a blend from it to `rwr`'s `β`. Not saved (a loaded controller commands
+    /// with its own `β`).
+    #[serde(skip)]
+    pub theta_from: Option<DMatrix<f64>>,
+    /// Commands this controller took part in since its last M-step (saturating).
+    #[serde(skip)]
+    pub ramp: u32,
 }
 
 /// What a new local controller is made of: its feature counts and regression settings.
@@ -59,6 +67,8 @@ pub(crate) struct Pace {
     pub solve_every: u64,
     pub solve_always: bool,
     pub trust_scale: f64,
+    /// `controllers.step_spread`.
+    pub spread: usize,
 }
 
 /// The outcome of one M-step of a local controller.
@@ -91,6 +101,16 @@ impl Local {
         if solve && self.dynamics.update().is_ok() {
             self.dynamics_updates += 1;
         }
+        if pace.spread > 1 {
+            // Ramp from the β commanded now (mid-ramp: the blend) to the new one.
+            let a = self.alpha(pace.spread);
+            let theta = self.rwr.theta();
+            match self.theta_from.as_mut() {
+                Some(f) => f.zip_apply(theta, |f, t| *f += a * (t - *f)),
+                None => self.theta_from = Some(theta.clone()),
+            }
+            self.ramp = 0;
+        }
         Ok(Some(match self.rwr.update_scaled(pace.trust_scale) {
             Ok(info) => {
                 self.ess = info.ess;
@@ -99,6 +119,37 @@ impl Local {
             }
             Err(_) => MStep::Failed,
         }))
+    }
+
+    /// `α ∈ [0, 1]` of the ramp from `theta_from` to the new `β`: `ramp / spread`.
+    fn alpha(&self, spread: usize) -> f64 {
+        (self.ramp as f64 / spread.max(1) as f64).min(1.0)
+    }
+
+    /// The controller's mean command `(1 − α) β_fromᵀφ + α βᵀφ` into `out` for one more command
+    /// (it advances the ramp; `tmp`: scratch of the same length). Does not allocate.
+    pub(crate) fn mean_into(
+        &mut self,
+        phi: &[f64],
+        spread: usize,
+        out: &mut [f64],
+        tmp: &mut [f64],
+    ) -> Result<()> {
+        self.rwr.mean_into(phi, out)?;
+        self.ramp = self.ramp.saturating_add(1);
+        let a = self.alpha(spread);
+        let Some(from) = self.theta_from.as_ref().filter(|_| a < 1.0) else {
+            return Ok(());
+        };
+        let p = from.nrows();
+        for (j, t) in tmp.iter_mut().enumerate() {
+            let col = &from.as_slice()[j * p..(j + 1) * p];
+            *t = col.iter().zip(phi).map(|(c, f)| c * f).sum();
+        }
+        for (o, t) in out.iter_mut().zip(tmp.iter()) {
+            *o = t + a * (*o - t);
+        }
+        Ok(())
     }
 
     /// Whether the controller's effective sample size is below `ess`.
@@ -150,6 +201,8 @@ impl LocalControllers {
                 updates: 0,
                 ess: 0.0,
                 last_active: now,
+                theta_from: None,
+                ramp: 0,
             },
         );
         Ok(())

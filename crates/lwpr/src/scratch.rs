@@ -13,6 +13,11 @@ pub(crate) struct Scratch {
     pub xk: Vec<f64>,
     /// Normalised regression input.
     pub xr: Vec<f64>,
+    /// The regression input with the kernel dimensions pulled onto an RF's support edge
+    /// (`predict_everywhere`).
+    pub xr_pull: Vec<f64>,
+    /// Position of each kernel dimension among the regression inputs (`usize::MAX`: none).
+    pub k_to_r: Vec<usize>,
     /// Normalised outputs.
     pub yn: Vec<f64>,
     /// PLS buffers.
@@ -74,6 +79,12 @@ impl Scratch {
             xn: vec![0.0; n_in],
             xk: vec![0.0; nk],
             xr: vec![0.0; nr],
+            xr_pull: vec![0.0; nr],
+            k_to_r: p
+                .kdims
+                .iter()
+                .map(|i| p.rdims.iter().position(|d| d == i).unwrap_or(usize::MAX))
+                .collect(),
             yn: vec![0.0; n_out],
             pls: PlsScratch::new(nr),
             met: MetricScratch::new(nk, p.mlen(), crate::fast::wide::scratch_len(nk, p.mlen())),

@@ -40,6 +40,7 @@ fn check(cfg: lwpr::LwprConfig, n_in: usize, n_out: usize) {
         let _ = m.predict(&x, &mut y);
         let _ = m.predict_conf(&x, &mut y, &mut conf);
         let _ = m.predict_jacobian(&x, &mut y, &mut jac);
+        let _ = m.predict_everywhere(&x, &mut y);
         let a1 = osrl_testkit::allocations();
         m.drain_events().for_each(drop);
         if info.added == 0 && info.pruned == 0 && structure(&m) == before {

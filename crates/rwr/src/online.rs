@@ -128,6 +128,19 @@ impl OnlineRwr {
         Ok(())
     }
 
+    /// Clamps one entry `θ[(row, col)]` into `[lo, hi]` (a bound the caller knows, e.g. on a
+    /// feedback gain); returns whether it moved. Out-of-range indices change nothing.
+    pub fn clamp_theta(&mut self, row: usize, col: usize, lo: f64, hi: f64) -> bool {
+        let t = self.policy.theta_mut();
+        if row >= t.nrows() || col >= t.ncols() {
+            return false;
+        }
+        let v = t[(row, col)];
+        let c = v.max(lo).min(hi);
+        t[(row, col)] = c;
+        c != v
+    }
+
     /// Extra forgetting: multiplies every weight in the statistics by `factor` (in (0, 1]; other
     /// values change nothing), as `factor` would as the forgetting factor of one sample. The
     /// learner uses it to forget faster while its models no longer fit the robot.

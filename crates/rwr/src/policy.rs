@@ -79,6 +79,11 @@ impl LinearGaussianPolicy {
         self.sigma
     }
 
+    /// `θ` to change in place (the caller keeps it finite).
+    pub(crate) fn theta_mut(&mut self) -> &mut DMatrix<f64> {
+        &mut self.theta
+    }
+
     /// Overwrites `θ` and `σ` in place (no allocation); the caller guarantees shape and values.
     pub(crate) fn set(&mut self, theta: &DMatrix<f64>, sigma: f64) {
         self.theta.copy_from(theta);

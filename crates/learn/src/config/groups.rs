@@ -49,6 +49,18 @@ pub struct GravityConfig {
     /// dynamic model is frozen there). Default true: at rest `u = g(q)` whatever the
     /// controller, so these samples are exact along the path.
     pub static_on_policy: bool,
+    /// `ĝ` is continuous in `q` and defined everywhere (`docs/decisions.md`, D21): each model
+    /// predicts from all its fields without LWPR's cutoff (`GravityModel::predict_everywhere`),
+    /// and once `ĝ` is frozen the static and the dynamic model are blended by their total
+    /// activations, `ĝ = (S_s ĝ_s + λ S_d ĝ_d) / (S_s + λ S_d)` (`λ`: `dynamic_weight`). false:
+    /// the switch of before — the static model where a field is above the cutoff, else the
+    /// dynamic one, else 0 (on the Panda `u0` lost 38–42 N·m in one period there). Default true.
+    pub continuous: bool,
+    /// `λ` of `continuous` (≥ 0): the dynamic model's weight per unit of its total activation,
+    /// relative to the static model's. Default 0.01: the static model (exact samples, D8)
+    /// decides wherever it has a field within about 3 kernel widths; the dynamic one takes
+    /// over where the static model's support is a hundred times weaker.
+    pub dynamic_weight: f64,
 }
 
 /// The partition: the forward model `ẍ = f(q, q̇, u)` (eqs. 32–33) whose receptive fields carry
@@ -117,6 +129,18 @@ pub struct ControllerConfig {
     /// own error add in the null space is removed (`docs/decisions.md`, D20). 0: the plain blend
     /// (eq. 34). Default 0: it lowers planar3's nMSE on every seed but raises sarcos7's.
     pub command_projection: f64,
+    /// Bound on each local controller's learned velocity gain on its own joint
+    /// (`docs/decisions.md`, D21): the net damping `K_D,j − β_{q̇_j, j}` stays within
+    /// `[0, share · 2 / (Δt (M⁻¹)_jj)]`, `(M⁻¹)_jj` measured in the warm-up and `2 / (Δt
+    /// (M⁻¹)_jj)` the discrete-time stability limit of a velocity loop under a held command;
+    /// this is `share`. Applied after every M-step (residual controllers only). 0 (default): no
+    /// bound — it made planar3's tracking and the Panda's braking worse (D21).
+    pub damping_bound: f64,
+    /// An M-step's change of a controller's command is spread over this many commands (≥ 1):
+    /// the controller commands `(1 − α) β_oldᵀφ + α β_newᵀφ` with `α` rising linearly from 0
+    /// to 1, so one update cannot make a command jump (D21). 1 (default): at once — spreading
+    /// made planar3 and the UR5 worse (D21).
+    pub step_spread: usize,
 }
 
 /// The local dynamics `ẍ ≈ [uᵀ, q̇ᵀ, (q − c)ᵀ, 1, u_j (q_k − c_k)] Θ` of each receptive field, by
@@ -234,6 +258,8 @@ impl Default for GravityConfig {
             },
             static_gate: Some(StaticGate::default()),
             static_on_policy: true,
+            continuous: true,
+            dynamic_weight: 0.01,
         }
     }
 }
@@ -276,6 +302,8 @@ impl Default for ControllerConfig {
             cost: CostKind::NullSpace,
             null_space_shrink: 1.0,
             command_projection: 0.0,
+            damping_bound: 0.0,
+            step_spread: 1,
         }
     }
 }

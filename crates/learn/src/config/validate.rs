@@ -72,6 +72,10 @@ impl LearnerConfig {
                 )
             })?;
         }
+        let w = self.gravity.dynamic_weight;
+        ensure(finite_at_least(w, 0.0), || {
+            format!("gravity.dynamic_weight {w} must be finite and ≥ 0")
+        })?;
         let d = &self.dynamics;
         ensure(d.forgetting > 0.0 && d.forgetting <= 1.0, || {
             format!("dynamics.forgetting {} must be in (0, 1]", d.forgetting)
@@ -106,6 +110,15 @@ impl LearnerConfig {
                 "controllers.prior_weight {} must be finite and > 0",
                 c.prior_weight
             )
+        })?;
+        ensure(finite_at_least(c.damping_bound, 0.0), || {
+            format!(
+                "controllers.damping_bound {} must be finite and ≥ 0",
+                c.damping_bound
+            )
+        })?;
+        ensure(c.step_spread >= 1, || {
+            "controllers.step_spread must be ≥ 1".into()
         })?;
         let e = &self.exploration;
         ensure(finite_at_least(e.correlation_time, 0.0), || {

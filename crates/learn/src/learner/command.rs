@@ -93,11 +93,12 @@ impl Learner {
         let trained_ess = self.cfg.controllers.trained_ess;
         f.controller_common(&mut ws.phi, xdd_ref, qd);
         let cut = self.cfg.partition.activation_cutoff;
+        let spread = self.cfg.controllers.step_spread;
         models.forward.activations(q, qd, cut, &mut ws.acts)?;
         u.fill(0.0);
         let (mut sum_w, mut sum_sigma) = (0.0, 0.0);
         for a in &ws.acts {
-            let Some(local) = models.locals.map.get(&a.id) else {
+            let Some(local) = models.locals.map.get_mut(&a.id) else {
                 continue;
             };
             let w = confidence(local.ess, trained_ess) * (a.w - cut);
@@ -105,7 +106,7 @@ impl Learner {
                 continue;
             }
             f.controller_local(&mut ws.phi, q, &local.center);
-            local.rwr.mean_into(&ws.phi, &mut ws.ui)?;
+            local.mean_into(&ws.phi, spread, &mut ws.ui, &mut ws.ui_from)?;
             for (o, v) in u.iter_mut().zip(&ws.ui) {
                 *o += w * v;
             }
@@ -152,6 +153,7 @@ impl Learner {
             let u0 = &mut self.ws.u0;
             nominal_into(
                 &self.cfg.nominal,
+                &self.cfg.gravity,
                 self.state.models_mut(),
                 self.gravity_frozen,
                 q,
@@ -250,6 +252,7 @@ mod tests {
         let (id, local) = models.locals.map.iter_mut().next().unwrap();
         let id = *id;
         local.rwr = OnlineRwr::with_theta(beta.clone(), rwr_cfg).unwrap();
+        local.theta_from = None; // set by hand: no update to spread
         local.ess = 1e9;
         let center = local.center.clone();
         // At the field's centre the command is its mean plus u0; where its support is below
@@ -329,6 +332,7 @@ mod tests {
         let models = fixture::models(&mut learner);
         let local = models.locals.map.values_mut().next().unwrap();
         local.rwr = OnlineRwr::with_theta(beta, rwr_cfg).unwrap();
+        local.theta_from = None; // set by hand: no update to spread
         local.ess = 1e9;
         let center = local.center.clone();
         (learner, center)
@@ -431,5 +435,43 @@ mod tests {
         heavy.guards.torque_rate_limit = Some(50.0);
         let learner = crate::Learner::new(3, 2, dt, heavy).unwrap();
         assert!(learner.rate.steps().iter().all(|s| (s - 0.1).abs() < 1e-12));
+    }
+
+    /// An M-step's change is spread over `step_spread` commands: with the field's `β` before
+    /// its last update at 0, the learned part of the command at a fixed state rises by equal
+    /// steps of 1/25 of the change and then stays at the new controller's.
+    #[test]
+    fn an_m_steps_change_is_spread_over_step_spread_commands() {
+        let mut cfg = fixture::config();
+        cfg.guards.torque_rate_limit = Some(f64::INFINITY);
+        cfg.controllers.step_spread = 25;
+        let (mut learner, c) = one_trained_field(cfg);
+        let (q, vd, xdd) = (c[..3].to_vec(), c[3..].to_vec(), [0.3, -0.2]);
+        let mut full = [0.0; 3];
+        let cmd = |l: &mut crate::Learner, u: &mut [f64; 3]| {
+            l.command::<rand_chacha::ChaCha8Rng>(&q, &vd, &xdd, None, u)
+                .unwrap()
+        };
+        assert_eq!(cmd(&mut learner, &mut full), CommandSource::Learned);
+        let mut u0 = [0.0; 3];
+        learner.nominal(&q, &vd, &mut u0).unwrap();
+        let local = fixture::models(&mut learner)
+            .locals
+            .map
+            .values_mut()
+            .next()
+            .unwrap();
+        local.theta_from = Some(DMatrix::zeros(local.rwr.theta().nrows(), 3));
+        local.ramp = 0;
+        let mut u = [0.0; 3];
+        for k in 1..=30 {
+            cmd(&mut learner, &mut u);
+            let a = (k as f64 / 25.0).min(1.0);
+            for j in 0..3 {
+                let want = u0[j] + a * (full[j] - u0[j]);
+                assert!((u[j] - want).abs() < 1e-9, "command {k}: {u:?} vs {want}");
+            }
+        }
+        assert!(largest_difference(&full, &u0) > 0.1);
     }
 }

@@ -70,3 +70,33 @@ pub fn ids(learner: &Learner) -> (Vec<u64>, Vec<u64>) {
     let b: Vec<u64> = learner.local_summaries().iter().map(|s| s.id).collect();
     (a, b)
 }
+
+/// `k + 1` measurements of planar3 under the sweep's PD law and torque pattern (no learner,
+/// no gravity compensation), and the true `(M⁻¹)_jj` at their mean posture: the reference of
+/// the test of the measured inertia (the learner never reads it).
+pub fn warm_up_with_inverse_inertia(k: usize) -> (Vec<Measurement>, Vec<f64>) {
+    let model = robots::planar3();
+    let spec = model.spec().clone();
+    let mut sim = robot();
+    let mut out = vec![sim.measurement().clone()];
+    let mut u = [0.0; 3];
+    for s in 0..k {
+        let prev = out.last().unwrap();
+        let t = prev.t;
+        for (i, ui) in u.iter_mut().enumerate() {
+            let target = spec.q_rest[i] + 0.3 * (1.3 * t + i as f64).sin();
+            *ui = 3.0 * spec.kp[i] * (target - prev.q[i]) - 3.0 * spec.kd[i] * prev.qd[i];
+            *ui += 0.5 * ((s * 7 + i * 3) % 11) as f64 - 2.5;
+        }
+        out.push(sim.step(&u).unwrap().clone());
+    }
+    let mean: Vec<f64> = (0..3)
+        .map(|i| out.iter().map(|m| m.q[i]).sum::<f64>() / out.len() as f64)
+        .collect();
+    let mut data = model.data();
+    let m = osrl_dynamics::crba(&model, &mut data, &mean)
+        .unwrap()
+        .clone();
+    let inv = m.try_inverse().unwrap();
+    (out, (0..3).map(|j| inv[(j, j)]).collect())
+}

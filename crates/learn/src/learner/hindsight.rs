@@ -193,6 +193,7 @@ impl Step<'_> {
         models.forward.activations(q, qd, cutoff, &mut ws.acts)?;
         nominal_into(
             &self.cfg.nominal,
+            &self.cfg.gravity,
             Some(&mut *models),
             self.gravity_frozen,
             q,
@@ -277,7 +278,9 @@ impl Step<'_> {
             } else {
                 1.0
             },
+            spread: self.cfg.controllers.step_spread,
         };
+        let (lo, hi) = (&self.models.velocity_gain_lo, &self.models.velocity_gain_hi);
         let floor = ad.residual_floor * ad.residual_floor;
         let (mut se, mut sv) = (0.0, 0.0);
         for a in &ws.acts {
@@ -306,7 +309,13 @@ impl Step<'_> {
             f.controller_local(&mut ws.phi, q, &local.center);
             let r = if adapting { self.adapt.cost(r) } else { r };
             match local.observe(&ws.phi, &ws.target, r, a.w, update_every, pace)? {
-                Some(MStep::Done) => self.stats.m_steps += 1,
+                Some(MStep::Done) => {
+                    self.stats.m_steps += 1;
+                    // The learned velocity loop of each joint stays stable (`inertia.rs`).
+                    for (j, (l, h)) in lo.iter().zip(hi).enumerate() {
+                        local.rwr.clamp_theta(self.m + j, j, *l, *h);
+                    }
+                }
                 Some(MStep::Failed) => self.stats.failed_m_steps += 1,
                 None => {}
             }
@@ -368,5 +377,40 @@ mod tests {
         // A field active in all 501 samples has had at most 501 / 10 M-steps.
         assert!(learner.local_summaries().iter().all(|l| l.updates <= 50));
         assert_eq!(s.samples, 501);
+    }
+
+    /// The largest learned velocity gain `|β_{q̇_j, j}|` over the controllers after 400 more
+    /// sweep samples (M-steps every 10), with the bounds `±b` (`None`: no bounds).
+    fn largest_velocity_gain(b: Option<f64>) -> f64 {
+        let mut cfg = fixture::config();
+        cfg.controllers.update_every = 10;
+        let (mut learner, mut sim, _) = fixture::ready(cfg, 100, 0);
+        let models = fixture::models(&mut learner);
+        let (lo, hi) = match b {
+            Some(b) => (vec![-b; 3], vec![b; 3]),
+            None => (Vec::new(), Vec::new()),
+        };
+        models.velocity_gain_lo = lo;
+        models.velocity_gain_hi = hi;
+        fixture::sweep(&mut learner, &mut sim, 400);
+        let m = 2;
+        let models = fixture::models(&mut learner);
+        assert!(models.locals.map.values().any(|l| l.updates > 0));
+        models
+            .locals
+            .map
+            .values()
+            .flat_map(|l| (0..3).map(move |j| l.rwr.theta()[(m + j, j)].abs()))
+            .fold(0.0, f64::max)
+    }
+
+    /// After every M-step each joint's learned velocity gain is within its bounds; without
+    /// them the same samples learn larger gains (so the bound acted).
+    #[test]
+    fn learned_velocity_gains_stay_within_their_bounds() {
+        let free = largest_velocity_gain(None);
+        let bounded = largest_velocity_gain(Some(1e-3));
+        assert!(free > 1e-2, "{free}");
+        assert!(bounded <= 1e-3, "{bounded}");
     }
 }

@@ -12,6 +12,7 @@
 //! | `cost.rs` | the cost and the hindsight shrinkage |
 //! | `null_space.rs` | the null space of `Â` |
 //! | `models.rs` | the models made after the warm-up |
+//! | `inertia.rs` | the joints' inverse inertia measured in the warm-up; the velocity gain bounds |
 //! | `adapt.rs` | re-adaptation when the local dynamics stop predicting |
 //! | `load.rs` | the load correction of `u0` while re-adapting |
 
@@ -24,6 +25,7 @@ mod features;
 pub(crate) mod fixture;
 mod guards;
 mod hindsight;
+mod inertia;
 mod load;
 mod models;
 mod nominal;

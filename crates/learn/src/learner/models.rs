@@ -20,6 +20,15 @@ pub(crate) struct Models {
     pub locals: LocalControllers,
     /// Standard deviation of each joint's torque during the warm-up (N·m).
     pub torque_scale: Vec<f64>,
+    /// Bounds `[lo, hi]` of each joint's learned velocity gain `β_{q̇_j, j}` (`inertia.rs`),
+    /// from the warm-up; empty: none (also after loading: the saved gains were bounded).
+    #[serde(skip)]
+    pub velocity_gain_lo: Vec<f64>,
+    #[serde(skip)]
+    pub velocity_gain_hi: Vec<f64>,
+    /// Buffer of the static model's `ĝ` while blending (`nominal.rs`).
+    #[serde(skip)]
+    pub g_static: Vec<f64>,
 }
 
 /// Standard deviation of `f` over the warm-up, at least 1e-3.
@@ -79,17 +88,28 @@ impl Models {
             acc,
             x.forward_uses_q,
         )?;
+        let share = cfg.controllers.damping_bound;
+        let (velocity_gain_lo, velocity_gain_hi) = if share > 0.0 && x.residual {
+            let inv = super::inertia::inverse_inertia_diagonal(warm, dt);
+            super::inertia::velocity_gain_bounds(&cfg.nominal.kd, &inv, dt, share)
+        } else {
+            (Vec::new(), Vec::new())
+        };
         Ok(Self {
+            velocity_gain_lo,
+            velocity_gain_hi,
             gravity,
             gravity_static,
             forward,
             locals: LocalControllers::default(),
+            g_static: vec![0.0; n],
             torque_scale: torque,
         })
     }
 
     /// Re-creates the query buffers that serialisation skips.
     pub fn restore_buffers(&mut self) {
+        self.g_static = vec![0.0; self.torque_scale.len()];
         self.gravity.restore_buffers();
         if let Some(g) = self.gravity_static.as_mut() {
             g.restore_buffers();

@@ -45,6 +45,8 @@ pub(crate) struct Scratch {
     pub du: Vec<f64>,
     pub z: Vec<f64>,
     pub ui: Vec<f64>,
+    /// One controller's mean with the `β` before its last M-step (the ramp of `local.rs`).
+    pub ui_from: Vec<f64>,
     pub target: Vec<f64>,
     /// The load correction `c` at the last relabelled state, and the policy's command for the
     /// measured `ẍ` (`load.rs`).
@@ -69,6 +71,7 @@ impl Scratch {
             du: vec![0.0; n],
             z: vec![0.0; n],
             ui: vec![0.0; n],
+            ui_from: vec![0.0; n],
             target: vec![0.0; n],
             load_c: vec![0.0; n],
             pi: vec![0.0; n],

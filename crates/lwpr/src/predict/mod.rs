@@ -4,6 +4,7 @@
 //! (`fast/mod.rs`).
 
 pub(crate) mod blend;
+pub(crate) mod everywhere;
 pub(crate) mod query;
 
 pub use blend::Support;

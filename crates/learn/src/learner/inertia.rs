@@ -1,0 +1,111 @@
+//! The joints' inverse inertia `(M⁻¹)_jj` measured in the warm-up, and the bound it sets on a
+//! local controller's learned velocity gain (`docs/decisions.md`, D21).
+//!
+//! Near home, `q̈ ≈ B u + K_q q + K_q̇ q̇ + k` with `B = M⁻¹` (the rest are gravity's and the
+//! velocity terms' linearisation): a least-squares fit of the warm-up's `q̈ = Δq̇/dt` on
+//! `[u, q, q̇, 1]` gives `B`, identified by the babbling's torque noise and target steps. A joint
+//! whose net velocity feedback is `D` (N·m·s/rad) under a command held for `Δt` is stable in
+//! discrete time only while `D Δt (M⁻¹)_jj < 2`; the learner keeps a learned loop within half
+//! of that and without negative net damping: `0 ≤ K_D,j − β_{q̇_j, j} ≤ share · 2 / (Δt B_jj)`.
+//! Measurements only: the robot's model is not read.
+
+use nalgebra::{DMatrix, DVector};
+use osrl_dynamics::Measurement;
+
+/// `(M⁻¹)_jj` per joint from the warm-up `warm` (period `dt`); NaN where the fit fails or the
+/// estimate is not positive (no bound there).
+pub(crate) fn inverse_inertia_diagonal(warm: &[Measurement], dt: f64) -> Vec<f64> {
+    let Some(first) = warm.first() else {
+        return Vec::new();
+    };
+    let n = first.q.len();
+    let p = 3 * n + 1;
+    let k = warm.len().saturating_sub(1);
+    if k < 2 * p {
+        return vec![f64::NAN; n];
+    }
+    let mut x = DMatrix::zeros(k, p);
+    let mut y = DMatrix::zeros(k, n);
+    for (r, pair) in warm.windows(2).enumerate() {
+        let (a, b) = (&pair[0], &pair[1]);
+        for j in 0..n {
+            x[(r, j)] = b.u[j];
+            x[(r, n + j)] = a.q[j];
+            x[(r, 2 * n + j)] = a.qd[j];
+            y[(r, j)] = (b.qd[j] - a.qd[j]) / dt;
+        }
+        x[(r, 3 * n)] = 1.0;
+    }
+    // Columns scaled to unit RMS so that one small ridge suits torques and angles alike.
+    let scale = DVector::from_iterator(
+        p,
+        (0..p).map(|c| (x.column(c).norm_squared() / k as f64).sqrt().max(1e-12)),
+    );
+    for c in 0..p {
+        x.column_mut(c).unscale_mut(scale[c]);
+    }
+    let mut gram = x.transpose() * &x;
+    for c in 0..p {
+        gram[(c, c)] += 1e-9 * k as f64;
+    }
+    let Some(chol) = gram.cholesky() else {
+        return vec![f64::NAN; n];
+    };
+    let coef = chol.solve(&(x.transpose() * &y));
+    (0..n)
+        .map(|j| {
+            let b = coef[(j, j)] / scale[j];
+            if b.is_finite() && b > 0.0 {
+                b
+            } else {
+                f64::NAN
+            }
+        })
+        .collect()
+}
+
+/// Bounds `[lo, hi]` of the learned velocity gain `β_{q̇_j, j}` of each joint: `hi = K_D,j` (no
+/// negative net damping), `lo = K_D,j − share · 2 / (Δt B_jj)`; `−∞` where `B_jj` is unknown.
+pub(crate) fn velocity_gain_bounds(
+    kd: &[f64],
+    inv_inertia: &[f64],
+    dt: f64,
+    share: f64,
+) -> (Vec<f64>, Vec<f64>) {
+    let lo = kd
+        .iter()
+        .zip(inv_inertia)
+        .map(|(k, b)| {
+            if b.is_finite() && *b > 0.0 {
+                k - share * 2.0 / (dt * b)
+            } else {
+                f64::NEG_INFINITY
+            }
+        })
+        .collect();
+    (lo, kd.to_vec())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{inverse_inertia_diagonal, velocity_gain_bounds};
+    use crate::learner::fixture;
+
+    /// On the fixture arm (planar, 3 joints) babbled with torque noise, the measured `(M⁻¹)_jj`
+    /// matches the true inverse mass matrix at the warm-up's mean posture within 20 %, and
+    /// the bounds follow it: the discrete-time limit `2 / (Δt B_jj)` halved below `K_D`.
+    #[test]
+    fn warm_up_measures_the_inverse_inertia() {
+        let (warm, truth) = fixture::warm_up_with_inverse_inertia(1000);
+        let b = inverse_inertia_diagonal(&warm, 0.002);
+        for j in 0..3 {
+            let rel = (b[j] - truth[j]).abs() / truth[j];
+            assert!(rel < 0.2, "joint {j}: {} vs {}", b[j], truth[j]);
+        }
+        let (lo, hi) = velocity_gain_bounds(&[1.0, 2.0, 3.0], &b, 0.002, 0.5);
+        assert_eq!(hi, vec![1.0, 2.0, 3.0]);
+        assert!((lo[0] - (1.0 - 1.0 / (0.002 * b[0]))).abs() < 1e-9);
+        let (lo, _) = velocity_gain_bounds(&[1.0], &[f64::NAN], 0.002, 0.5);
+        assert_eq!(lo, vec![f64::NEG_INFINITY]);
+    }
+}
