@@ -104,8 +104,8 @@ pub struct TrainConfig {
     /// A continuation (no babbling before the on-policy phase, as in `osrl adapt`) starts with
     /// the hold at home under PD with `ĝ`, from the hold's own command; false: the first
     /// episode's fade (`first_switch_seconds`) starts from zero torque, the arm sagging under
-    /// gravity until the learned command has taken over. Default false: measured on a changed
-    /// robot it helps planar3's seed 0 and hurts seeds 1 and 2 (`docs/decisions.md`, D-adapt).
+    /// gravity until the learned command has taken over. Default false: alone it does not keep
+    /// sarcos7 on a changed arm's path and costs planar3 (`docs/decisions.md`, D-adapt).
     pub hold_before_continuation: bool,
     /// The arm is at home when every joint is within this of the home posture (rad or m) and
     /// moves slower than this (rad/s or m/s); an on-policy episode starts only there. Default
