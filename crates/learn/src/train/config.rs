@@ -101,6 +101,12 @@ pub struct TrainConfig {
     /// The same after an episode braked or aborted on its task error (s): short, so the PD
     /// return home takes over before the error grows. Default 0.05.
     pub brake_switch_seconds: f64,
+    /// A continuation (no babbling before the on-policy phase, as in `osrl adapt`) starts with
+    /// the hold at home under PD with `ĝ`, from the hold's own command; false: the first
+    /// episode's fade (`first_switch_seconds`) starts from zero torque, the arm sagging under
+    /// gravity until the learned command has taken over. Default false: alone it does not keep
+    /// sarcos7 on a changed arm's path and costs planar3 (`docs/decisions.md`, D-adapt).
+    pub hold_before_continuation: bool,
     /// The arm is at home when every joint is within this of the home posture (rad or m) and
     /// moves slower than this (rad/s or m/s); an on-policy episode starts only there. Default
     /// 0.01.
@@ -137,6 +143,7 @@ impl Default for TrainConfig {
             switch_seconds: 0.25,
             first_switch_seconds: 5.0,
             brake_switch_seconds: 0.05,
+            hold_before_continuation: false,
             home_tolerance: 0.01,
             home_integral_seconds: 1.0,
             home_hold_seconds: 5.0,

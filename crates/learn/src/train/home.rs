@@ -47,6 +47,14 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
         self.hold_home(limit)
     }
 
+    /// The hold's command at home, `ĝ + s (K_P e + K_D ė)` at the last measurement, into `u`
+    /// (the command a fade then starts from).
+    pub(super) fn hold_command(&mut self) -> Result<()> {
+        let (prev, zero) = (self.prev.clone(), vec![0.0; self.home.len()]);
+        let scale = self.cfg.babble.gain_scale;
+        pd_command(self.learner, &prev, &self.home, &zero, scale, &mut self.u)
+    }
+
     /// Holds home under `ĝ + s (K_P e + K_D ė)` for 1 s; if the arm has not settled then, under
     /// `ĝ + s (K_P e + K_I ∫e + K_D ė)` with `K_I = K_P / home_integral_seconds` (the integral's
     /// torque bounded by half the torque limit) until it has, or `home_hold_seconds` have passed,

@@ -8,6 +8,8 @@
 
 mod babble;
 mod config;
+#[cfg(test)]
+mod continuation_tests;
 mod curriculum;
 mod home;
 mod observer;

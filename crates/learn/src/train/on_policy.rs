@@ -17,8 +17,16 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
         self.learning = self.cfg.learn_on_policy;
         let gravity_on = self.learner.config().experimental.gravity_on_policy;
         self.learner.freeze_gravity(!gravity_on);
+        // A continuation (no babbling before it, e.g. `osrl adapt`) has sent nothing yet: the
+        // first episode's fade starts from zero torque unless the hold at home comes first,
+        // from the hold's own command (`hold_before_continuation`).
+        let mut hold_first = self.steps == 0 && self.cfg.hold_before_continuation;
+        if hold_first {
+            self.hold_command()?;
+        }
         while !self.done() {
-            if self.away_from_home() && !self.return_home()? {
+            let away = std::mem::take(&mut hold_first) || self.away_from_home();
+            if away && !self.return_home()? {
                 // Not settled within the hold: the episode starts from where the arm is
                 // (counted), rather than returning home again and again.
                 self.unsettled_starts += 1;

@@ -1,0 +1,93 @@
+//! A continuation (on-policy learning with no babbling before it, as `osrl adapt` runs one)
+//! with `hold_before_continuation` starts from the PD hold at home, not from zero torque.
+
+use super::babble::pd_command;
+use crate::learner::fixture;
+use crate::train::{BabbleConfig, OnEvaluation, TrainConfig, Trainer};
+use crate::Learner;
+use osrl_control::TrajectoryConfig;
+use osrl_dynamics::{robots, Measurement, Robot, SimRobot};
+
+/// A simulated robot that records the commands it is sent.
+struct Recording {
+    sim: SimRobot,
+    sent: Vec<Vec<f64>>,
+}
+
+impl Robot for Recording {
+    fn dof(&self) -> usize {
+        self.sim.dof()
+    }
+    fn task_dim(&self) -> usize {
+        self.sim.task_dim()
+    }
+    fn control_period(&self) -> f64 {
+        self.sim.control_period()
+    }
+    fn torque_limits(&self) -> &[f64] {
+        self.sim.torque_limits()
+    }
+    fn joint_limits(&self) -> (&[f64], &[f64]) {
+        self.sim.joint_limits()
+    }
+    fn measurement(&self) -> &Measurement {
+        self.sim.measurement()
+    }
+    fn step(&mut self, u: &[f64]) -> osrl_dynamics::Result<&Measurement> {
+        self.sent.push(u.to_vec());
+        self.sim.step(u)
+    }
+}
+
+/// With `hold_before_continuation`, the first command of a continuation on planar3 (a learner
+/// past its warm-up, at rest at home) is the hold's `ĝ(home)` — several N·m, not zero — and
+/// the arm stays at home for the first second instead of sagging while the first episode fades
+/// in from zero torque (without it the first command sent is zero).
+#[test]
+fn a_continuation_starts_from_the_hold_not_from_zero_torque() {
+    let (mut learner, _, _) = fixture::ready(fixture::config(), 200, 1000);
+    let model = robots::planar3();
+    let traj = TrajectoryConfig::default().build(&model).unwrap();
+    let mut robot = Recording {
+        sim: fixture::robot(),
+        sent: Vec::new(),
+    };
+    let home = robot.measurement().clone();
+    let cfg = TrainConfig {
+        minutes: 1.0 / 60.0,
+        eval_every_minutes: 0.0,
+        babble: BabbleConfig {
+            minutes: 0.0,
+            ..BabbleConfig::default()
+        },
+        hold_before_continuation: true,
+        ..TrainConfig::default()
+    };
+    let mut hold = vec![0.0; 3];
+    let (q, zero) = (home.q.as_slice().to_vec(), [0.0; 3]);
+    let scale = cfg.babble.gain_scale;
+    pd_command(&mut learner.clone(), &home, &q, &zero, scale, &mut hold).unwrap();
+    let axes = model.task_axes().to_vec();
+    let mut evaluate = |_: &mut Learner| Ok(Default::default());
+    let mut obs = OnEvaluation(|_: &crate::train::Progress| {});
+    Trainer::new(
+        &mut robot,
+        &mut learner,
+        &traj,
+        &axes,
+        &cfg,
+        &mut evaluate,
+        &mut obs,
+    )
+    .unwrap()
+    .run()
+    .unwrap();
+    let big = hold.iter().fold(0.0, |m: f64, g| m.max(g.abs()));
+    assert!(big > 1.0, "ĝ(home) = {hold:?} N·m");
+    let first = &robot.sent[0];
+    let off = first.iter().zip(&hold).map(|(u, g)| (u - g).abs());
+    assert!(off.fold(0.0, f64::max) < 1e-9, "{first:?} vs {hold:?}");
+    let sag = robot.sim.measurement().q.iter().zip(&q);
+    let sag = sag.fold(0.0, |m: f64, (a, b)| m.max((a - b).abs()));
+    assert!(sag < 0.01, "{sag} rad from home after 1 s");
+}
