@@ -26,6 +26,7 @@ struct Step<'a> {
     m: usize,
     dt: f64,
     gravity_frozen: bool,
+    static_frozen: bool,
     adapt: &'a mut AdaptationSignal,
     load: &'a mut LoadCorrection,
 }
@@ -46,6 +47,7 @@ impl Learner {
             m: self.m,
             dt: self.dt,
             gravity_frozen: self.gravity_frozen,
+            static_frozen: self.static_frozen,
             adapt: &mut self.adapt,
             load: &mut self.load,
         }
@@ -79,7 +81,9 @@ impl Step<'_> {
         }
         let ad = &self.cfg.adaptation;
         let paused = ad.enabled && ad.pause_static_gravity && self.adapt.strength > 0.0;
-        let static_on = (!self.gravity_frozen || self.cfg.gravity.static_on_policy) && !paused;
+        let static_on = (!self.gravity_frozen || self.cfg.gravity.static_on_policy)
+            && !paused
+            && !self.static_frozen;
         if let (true, true, Some(g)) = (dt > 0.0, static_on, self.models.gravity_static.as_mut()) {
             // With a load correction in `u0`, the static model keeps the gravity without it
             // (`c` at the last relabelled state, the previous one: the arm is still).

@@ -47,6 +47,9 @@ pub struct Learner {
     pub(crate) stats: LearnerStats,
     /// `ĝ` no longer learns (see [`Learner::freeze_gravity`]).
     pub(crate) gravity_frozen: bool,
+    /// The static gravity model learns nothing either (see [`Learner::freeze_static_gravity`];
+    /// not saved: the training driver sets it for each run).
+    pub(crate) static_frozen: bool,
     pub(crate) ws: Scratch,
     /// The exploration noise processes and the torque-rate limiter: the memory of the command
     /// from one control period to the next (reset by [`Learner::start_episode`]).
@@ -94,6 +97,7 @@ impl Learner {
             features,
             stats: LearnerStats::default(),
             gravity_frozen: false,
+            static_frozen: false,
             ws,
             adapt: AdaptationSignal::default(),
             load: LoadCorrection::default(),
@@ -213,6 +217,14 @@ impl Learner {
     /// the inverse-dynamics regression cannot separate them and its value at `q̇ = q̈ = 0` drifts.
     pub fn freeze_gravity(&mut self, frozen: bool) {
         self.gravity_frozen = frozen;
+    }
+
+    /// Stops (or resumes) the learning of the static gravity model too, which otherwise keeps
+    /// learning from the still samples while `ĝ` is frozen (`gravity.static_on_policy`). The
+    /// training driver freezes it for a continuation of a trained controller (`osrl adapt`,
+    /// `TrainConfig::freeze_static_in_continuation`).
+    pub fn freeze_static_gravity(&mut self, frozen: bool) {
+        self.static_frozen = frozen;
     }
 
     /// Whether `ĝ` is frozen.

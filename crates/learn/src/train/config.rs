@@ -104,9 +104,17 @@ pub struct TrainConfig {
     /// A continuation (no babbling before the on-policy phase, as in `osrl adapt`) starts with
     /// the hold at home under PD with `ĝ`, from the hold's own command; false: the first
     /// episode's fade (`first_switch_seconds`) starts from zero torque, the arm sagging under
-    /// gravity until the learned command has taken over. Default false: alone it does not keep
-    /// sarcos7 on a changed arm's path and costs planar3 (`docs/decisions.md`, D-adapt).
+    /// gravity until the learned command has taken over. Default true: with the static gravity
+    /// model frozen while re-adapting (`adaptation.freeze_static_gravity`) it keeps sarcos7 on
+    /// a loaded arm's path (`docs/decisions.md`, D-adapt). A run that babbles first is
+    /// unaffected.
     pub hold_before_continuation: bool,
+    /// A continuation keeps the static gravity model frozen (it learns nothing from the
+    /// still samples of the holds and stops). Default true: on sarcos7 with a 0.5 kg payload
+    /// its learning from the loaded arm's holds at home broke the controller within 1.8 s of
+    /// `osrl adapt` and every seed diverged (`docs/decisions.md`, D-adapt). A run that babbles
+    /// first is unaffected.
+    pub freeze_static_in_continuation: bool,
     /// The arm is at home when every joint is within this of the home posture (rad or m) and
     /// moves slower than this (rad/s or m/s); an on-policy episode starts only there. Default
     /// 0.01.
@@ -143,7 +151,8 @@ impl Default for TrainConfig {
             switch_seconds: 0.25,
             first_switch_seconds: 5.0,
             brake_switch_seconds: 0.05,
-            hold_before_continuation: false,
+            hold_before_continuation: true,
+            freeze_static_in_continuation: true,
             home_tolerance: 0.01,
             home_integral_seconds: 1.0,
             home_hold_seconds: 5.0,

@@ -20,7 +20,10 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
         // A continuation (no babbling before it, e.g. `osrl adapt`) has sent nothing yet: the
         // first episode's fade starts from zero torque unless the hold at home comes first,
         // from the hold's own command (`hold_before_continuation`).
-        let mut hold_first = self.steps == 0 && self.cfg.hold_before_continuation;
+        let continuation = self.steps == 0;
+        self.learner
+            .freeze_static_gravity(continuation && self.cfg.freeze_static_in_continuation);
+        let mut hold_first = continuation && self.cfg.hold_before_continuation;
         if hold_first {
             self.hold_command()?;
         }
