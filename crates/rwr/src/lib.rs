@@ -55,6 +55,9 @@
 mod batch;
 mod config;
 mod error;
+mod held;
+#[cfg(target_arch = "x86_64")]
+mod held_x86;
 mod online;
 mod policy;
 mod simd;

@@ -1,11 +1,17 @@
 //! Weighted sufficient statistics of eq. 23, 24 and 28, and their allocation-free solve.
 
 use crate::error::{Result, RwrError};
+use crate::held::Held;
 use nalgebra::DMatrix;
 
 /// `Σ w φφᵀ`, `Σ w φ uᵀ`, `Σ w ‖u‖²`, `Σ w`, `Σ w r`, `Σ w²` for some weights `w ≥ 0`
 /// (possibly all scaled by one common factor, which cancels everywhere they are used).
-#[derive(Debug, Clone, serde::Serialize, serde::Deserialize, PartialEq)]
+///
+/// The scalar sums are always current; `gram` and `cross` may lag behind by the samples held
+/// by [`Stats::push`] (see `held.rs`), and whoever reads them calls [`Stats::flush`] first. The
+/// serialised form is the flushed one.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(into = "Sums", from = "Sums")]
 pub(crate) struct Stats {
     pub gram: DMatrix<f64>,
     pub cross: DMatrix<f64>,
@@ -13,6 +19,48 @@ pub(crate) struct Stats {
     pub sw: f64,
     pub swr: f64,
     pub sw2: f64,
+    pub(crate) held: Held,
+}
+
+/// The serialised form of [`Stats`] (its sums, flushed).
+#[derive(serde::Serialize, serde::Deserialize)]
+#[serde(rename = "Stats")]
+struct Sums {
+    gram: DMatrix<f64>,
+    cross: DMatrix<f64>,
+    yy: f64,
+    sw: f64,
+    swr: f64,
+    sw2: f64,
+}
+
+impl From<Stats> for Sums {
+    fn from(mut s: Stats) -> Self {
+        s.flush();
+        Sums {
+            gram: s.gram,
+            cross: s.cross,
+            yy: s.yy,
+            sw: s.sw,
+            swr: s.swr,
+            sw2: s.sw2,
+        }
+    }
+}
+
+impl From<Sums> for Stats {
+    fn from(s: Sums) -> Self {
+        let held = Held::new(s.gram.nrows(), s.cross.ncols());
+        Stats {
+            gram: s.gram,
+            cross: s.cross,
+            yy: s.yy,
+            sw: s.sw,
+            swr: s.swr,
+            sw2: s.sw2,
+            held,
+        }
+    }
 }
 
 impl Stats {
@@ -24,6 +72,7 @@ impl Stats {
             sw: 0.0,
             swr: 0.0,
             sw2: 0.0,
+            held: Held::new(p, d),
         }
     }
 
@@ -33,6 +82,7 @@ impl Stats {
 
     /// Multiplies every weight by `f` (so `Σ w²` by `f²`).
     pub fn scale(&mut self, f: f64) {
+        self.flush();
         self.gram *= f;
         self.cross *= f;
         self.yy *= f;
@@ -44,6 +94,7 @@ impl Stats {
     /// Adds one sample `(φ, u, r)` with weight `w`. Lengths are the caller's responsibility.
     /// Runs the AVX2 copy where the CPU has it (the same operations: the same bits).
     pub fn add(&mut self, w: f64, phi: &[f64], u: &[f64], r: f64) {
+        self.flush();
         #[cfg(target_arch = "x86_64")]
         if crate::simd::avx2() {
             // SAFETY: the CPU supports AVX2 (checked just above).

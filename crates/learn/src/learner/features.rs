@@ -84,15 +84,21 @@ impl Features {
     /// (`φ_d`-rows × m): `Â_i(q) = Θ_u + Σ_k (q_k − c_k) Θ_{u_j q_k}`.
     pub fn add_gain(&self, theta: &DMatrix<f64>, q: &[f64], center: &[f64], w: f64, a: &mut [f64]) {
         let n = self.n;
+        let rows = theta.nrows();
+        let (q, center) = (&q[..n], &center[..n]);
         for k in 0..self.m {
-            for j in 0..n {
-                let mut g = theta[(j, k)];
+            // Column k of Θ (contiguous), and row k of Â.
+            let col = &theta.as_slice()[k * rows..(k + 1) * rows];
+            let out = &mut a[k * n..(k + 1) * n];
+            for (j, o) in out.iter_mut().enumerate() {
+                let mut g = col[j];
                 if self.bilinear {
-                    for i in 0..n {
-                        g += (q[i] - center[i]) * theta[(3 * n + 1 + j * n + i, k)];
+                    let t = &col[3 * n + 1 + j * n..][..n];
+                    for ((qi, ci), ti) in q.iter().zip(center).zip(t) {
+                        g += (qi - ci) * ti;
                     }
                 }
-                a[k * n + j] += w * g;
+                *o += w * g;
             }
         }
     }
