@@ -5,24 +5,11 @@
 //! `held.rs`).
 
 use crate::held::{Group, Held, Kernel, GROUP, LANES, PAD};
+use crate::simd::unroll;
 use std::arch::x86_64::*;
 
 /// The accumulators of one group: block `g` in registers `2g` (rows 0–3) and `2g + 1` (4–7).
 type Acc = [__m256d; 2 * GROUP];
-
-/// `body` for `$g` = 0, 1, …, 7: literal indices, so the accumulators stay in registers.
-macro_rules! unroll {
-    ($g:ident => $body:block) => {{
-        const _: () = assert!(GROUP == 8);
-        unroll!(@ $g $body 0 1 2 3 4 5 6 7)
-    }};
-    (@ $g:ident $body:block $($i:literal)*) => {{
-        $({
-            let $g: usize = $i;
-            $body
-        })*
-    }};
-}
 
 /// Masks selecting the first `n` of four lanes (`MASK[n]`).
 const MASK: [[i64; 4]; 5] = [

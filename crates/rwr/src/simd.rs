@@ -20,6 +20,21 @@ pub(crate) fn avx512() -> bool {
     std::arch::is_x86_feature_detected!("avx512f")
 }
 
+/// `body` for `$g` = 0, 1, …, 7: literal indices, so the accumulators stay in registers.
+macro_rules! unroll {
+    ($g:ident => $body:block) => {{
+                unroll!(@ $g $body 0 1 2 3 4 5 6 7)
+    }};
+    (@ $g:ident $body:block $($i:literal)*) => {{
+        $({
+            let $g: usize = $i;
+            $body
+        })*
+    }};
+}
+
+pub(crate) use unroll;
+
 #[cfg(test)]
 mod tests {
     use crate::stats::{Solver, Stats};

@@ -209,11 +209,13 @@ impl Solver {
         }
         let p = self.a.nrows();
         let inv = 1.0 / s.sw;
+        let (a, g) = (self.a.as_mut_slice(), s.gram.as_slice());
         for j in 0..p {
-            for i in j..p {
-                self.a[(i, j)] = s.gram[(i, j)] * inv;
+            let col = j * p + j..(j + 1) * p;
+            for (a, g) in a[col.clone()].iter_mut().zip(&g[col]) {
+                *a = g * inv;
             }
-            self.a[(j, j)] += ridge;
+            a[j * p + j] += ridge;
         }
         self.theta.copy_from(&s.cross);
         self.theta *= inv;
@@ -222,7 +224,7 @@ impl Solver {
                 *t += ridge * p;
             }
         }
-        cholesky_solve_lower(&mut self.a, &mut self.theta)?;
+        crate::cholesky::solve_lower(&mut self.a, &mut self.theta)?;
         // Σw‖u − θᵀφ‖² = Σw‖u‖² − 2 tr(θᵀC) + tr(θᵀGθ), with G symmetric from its lower
         // triangle: θ_kᵀ G θ_k = Σ_j θ_jk (G_jj θ_jk + 2 Σ_{i>j} G_ij θ_ik), on contiguous columns.
         let (g, c) = (s.gram.as_slice(), s.cross.as_slice());
@@ -241,7 +243,7 @@ impl Solver {
 
 /// `aᵀb` with four partial sums (vectorisable).
 #[inline(always)]
-fn dot(a: &[f64], b: &[f64]) -> f64 {
+pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
     let mut acc = [0.0; 4];
     let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
     let tail: f64 = ca
@@ -256,60 +258,4 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
         }
     }
     (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
-}
-
-/// Solves `A X = B` for symmetric positive definite `A` given by its lower triangle: overwrites
-/// the lower triangle of `A` with its Cholesky factor `L` and `B` with `X`. Fails with
-/// [`RwrError::Singular`] (B then holds garbage) when `A` is not numerically positive definite.
-#[inline(always)]
-fn cholesky_solve_lower(a: &mut DMatrix<f64>, b: &mut DMatrix<f64>) -> Result<()> {
-    let p = a.nrows();
-    // Right-looking factorisation on contiguous columns (the same operations, in the same
-    // order per element, as the textbook left-looking loop). The original diagonal, needed for
-    // the pivot test, is kept in the unused upper triangle (row 0).
-    for j in 1..p {
-        a[(0, j)] = a[(j, j)];
-    }
-    let m = a.as_mut_slice();
-    for j in 0..p {
-        let diag = if j == 0 { m[0] } else { m[j * p] };
-        let d = m[j * p + j];
-        // A pivot lost to rounding (relative to its diagonal) counts as singular.
-        if !(d > 1e-13 * diag && d.is_finite()) {
-            return Err(RwrError::Singular);
-        }
-        let d = d.sqrt();
-        m[j * p + j] = d;
-        for v in &mut m[j * p + j + 1..(j + 1) * p] {
-            *v /= d;
-        }
-        // Update the trailing columns: A[c.., c] −= L[c, j] L[c.., j].
-        let (left, right) = m.split_at_mut((j + 1) * p);
-        let lj = &left[j * p..(j + 1) * p];
-        for c in j + 1..p {
-            let l = lj[c];
-            let off = (c - j - 1) * p;
-            for (t, x) in right[off + c..off + p].iter_mut().zip(&lj[c..]) {
-                *t -= x * l;
-            }
-        }
-    }
-    let l = a.as_slice();
-    for c in 0..b.ncols() {
-        let col = &mut b.as_mut_slice()[c * p..(c + 1) * p];
-        // Forward substitution, column by column of L.
-        for k in 0..p {
-            let v = col[k] / l[k * p + k];
-            col[k] = v;
-            for (t, x) in col[k + 1..].iter_mut().zip(&l[k * p + k + 1..(k + 1) * p]) {
-                *t -= x * v;
-            }
-        }
-        // Back substitution with Lᵀ (columns of L are contiguous).
-        for i in (0..p).rev() {
-            let v = col[i] - dot(&l[i * p + i + 1..(i + 1) * p], &col[i + 1..]);
-            col[i] = v / l[i * p + i];
-        }
-    }
-    Ok(())
 }
