@@ -31,19 +31,23 @@ pub(crate) fn solve_lower(a: &mut DMatrix<f64>, b: &mut DMatrix<f64>) -> Result<
     factor_right(a)?;
     let p = a.nrows();
     let l = a.as_slice();
-    for c in 0..b.ncols() {
-        let col = &mut b.as_mut_slice()[c * p..(c + 1) * p];
-        // Forward substitution, column by column of L.
-        for k in 0..p {
+    // The columns of B are independent: interleaved, so that their chains of divisions overlap.
+    // Forward substitution, column by column of L.
+    for k in 0..p {
+        let lk = &l[k * p + k + 1..(k + 1) * p];
+        for col in b.as_mut_slice().chunks_exact_mut(p) {
             let v = col[k] / l[k * p + k];
             col[k] = v;
-            for (t, x) in col[k + 1..].iter_mut().zip(&l[k * p + k + 1..(k + 1) * p]) {
+            for (t, x) in col[k + 1..].iter_mut().zip(lk) {
                 *t -= x * v;
             }
         }
-        // Back substitution with Lᵀ (columns of L are contiguous).
-        for i in (0..p).rev() {
-            let v = col[i] - dot(&l[i * p + i + 1..(i + 1) * p], &col[i + 1..]);
+    }
+    // Back substitution with Lᵀ (columns of L are contiguous).
+    for i in (0..p).rev() {
+        let li = &l[i * p + i + 1..(i + 1) * p];
+        for col in b.as_mut_slice().chunks_exact_mut(p) {
+            let v = col[i] - dot(li, &col[i + 1..]);
             col[i] = v / l[i * p + i];
         }
     }
