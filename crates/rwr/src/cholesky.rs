@@ -15,13 +15,17 @@ use nalgebra::DMatrix;
 /// Columns per panel of the blocked factorisation.
 pub(crate) const PANEL: usize = 4;
 
+/// Size from which the blocked factorisation runs (below, the right-looking one: a block of
+/// eight rows would be mostly padding).
+const PANEL_MIN: usize = 24;
+
 /// Solves `A X = B`: overwrites the lower triangle of `A` with its Cholesky factor `L` and `B`
 /// with `X`. Fails with [`RwrError::Singular`] (B then holds garbage) when `A` is not
 /// numerically positive definite.
 #[inline(always)]
 pub(crate) fn solve_lower(a: &mut DMatrix<f64>, b: &mut DMatrix<f64>) -> Result<()> {
     #[cfg(target_arch = "x86_64")]
-    if crate::simd::avx512() {
+    if crate::simd::avx512() && a.nrows() >= PANEL_MIN {
         // SAFETY: the CPU supports AVX-512F (checked just above).
         unsafe { factor_panels(a, crate::cholesky_x86::panel_avx512)? };
     } else {
