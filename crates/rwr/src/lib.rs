@@ -53,8 +53,14 @@
 #![allow(clippy::needless_range_loop)]
 
 mod batch;
+mod cholesky;
+#[cfg(target_arch = "x86_64")]
+mod cholesky_x86;
 mod config;
 mod error;
+mod held;
+#[cfg(target_arch = "x86_64")]
+mod held_x86;
 mod online;
 mod policy;
 mod simd;

@@ -120,11 +120,13 @@ impl OnlineRwr {
         if l == f64::NEG_INFINITY {
             return Ok(());
         }
+        let mut f = None;
         if l > self.log_scale {
-            self.stats.scale((self.log_scale - l).exp());
+            f = Some((self.log_scale - l).exp());
             self.log_scale = l;
         }
-        self.stats.add((l - self.log_scale).exp(), phi, u, r);
+        // `scale` then `add`, the matrix parts held until the next M-step (`Stats::push`).
+        self.stats.push(f, (l - self.log_scale).exp(), phi, u, r);
         Ok(())
     }
 
@@ -151,8 +153,10 @@ impl OnlineRwr {
     }
 
     /// The weighted mean squared residual per output dimension of the current `θ` over the
-    /// statistics, `Σ w ‖u − θᵀφ‖² / (d Σw)` (0 when empty). Does not allocate.
-    pub fn mean_sq_residual(&self) -> f64 {
+    /// statistics, `Σ w ‖u − θᵀφ‖² / (d Σw)` (0 when empty). Folds the held samples into the
+    /// statistics first (hence `&mut`). Does not allocate.
+    pub fn mean_sq_residual(&mut self) -> f64 {
+        self.stats.flush();
         let s = &self.stats;
         if s.sw.is_nan() || s.sw <= 0.0 {
             return 0.0;
@@ -189,6 +193,7 @@ impl OnlineRwr {
     /// [`Self::update`] with the trust region (if any) widened by `trust_scale` (≥ 1 widens;
     /// the learner's "learning rate" while it re-adapts to a changed robot).
     pub fn update_scaled(&mut self, trust_scale: f64) -> Result<StepInfo> {
+        self.stats.flush();
         let prior = self.cfg.ridge_to_previous.then(|| self.policy.theta());
         let msr = self
             .solver

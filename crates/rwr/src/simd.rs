@@ -1,9 +1,10 @@
-//! The run-time choice of the AVX2 copies of the hot loops (`Stats::add`, the solve of eq. 23).
+//! The run-time choice of the AVX2 copies of the hot loops (`Stats::add`, the solve of eq. 23)
+//! and of the AVX2 / AVX-512 kernels of `Stats::flush` (`held_x86.rs`).
 //!
 //! A copy is the same Rust code compiled with AVX2 enabled: four lanes instead of two, the same
 //! operations in the same order per element (Rust never fuses a multiply and an add on its
-//! own), so the results are the same bits on every x86-64 CPU — tested in `stats.rs` against the
-//! baseline copy.
+//! own), so the results are the same bits on every x86-64 CPU — tested here and in `held.rs`
+//! against the baseline copy.
 
 /// Whether the CPU supports AVX2 (cached by the standard library after the first query).
 #[cfg(target_arch = "x86_64")]
@@ -11,6 +12,28 @@
 pub(crate) fn avx2() -> bool {
     std::arch::is_x86_feature_detected!("avx2")
 }
+
+/// Whether the CPU supports AVX-512F (eight lanes; cached like [`avx2`]).
+#[cfg(target_arch = "x86_64")]
+#[inline]
+pub(crate) fn avx512() -> bool {
+    std::arch::is_x86_feature_detected!("avx512f")
+}
+
+/// `body` for `$g` = 0, 1, …, 7: literal indices, so the accumulators stay in registers.
+macro_rules! unroll {
+    ($g:ident => $body:block) => {{
+                unroll!(@ $g $body 0 1 2 3 4 5 6 7)
+    }};
+    (@ $g:ident $body:block $($i:literal)*) => {{
+        $({
+            let $g: usize = $i;
+            $body
+        })*
+    }};
+}
+
+pub(crate) use unroll;
 
 #[cfg(test)]
 mod tests {

@@ -1,11 +1,17 @@
 //! Weighted sufficient statistics of eq. 23, 24 and 28, and their allocation-free solve.
 
 use crate::error::{Result, RwrError};
+use crate::held::Held;
 use nalgebra::DMatrix;
 
 /// `Σ w φφᵀ`, `Σ w φ uᵀ`, `Σ w ‖u‖²`, `Σ w`, `Σ w r`, `Σ w²` for some weights `w ≥ 0`
 /// (possibly all scaled by one common factor, which cancels everywhere they are used).
-#[derive(Debug, Clone, serde::Serialize, serde::Deserialize, PartialEq)]
+///
+/// The scalar sums are always current; `gram` and `cross` may lag behind by the samples held
+/// by [`Stats::push`] (see `held.rs`), and whoever reads them calls [`Stats::flush`] first. The
+/// serialised form is the flushed one.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(into = "Sums", from = "Sums")]
 pub(crate) struct Stats {
     pub gram: DMatrix<f64>,
     pub cross: DMatrix<f64>,
@@ -13,6 +19,48 @@ pub(crate) struct Stats {
     pub sw: f64,
     pub swr: f64,
     pub sw2: f64,
+    pub(crate) held: Held,
+}
+
+/// The serialised form of [`Stats`] (its sums, flushed).
+#[derive(serde::Serialize, serde::Deserialize)]
+#[serde(rename = "Stats")]
+struct Sums {
+    gram: DMatrix<f64>,
+    cross: DMatrix<f64>,
+    yy: f64,
+    sw: f64,
+    swr: f64,
+    sw2: f64,
+}
+
+impl From<Stats> for Sums {
+    fn from(mut s: Stats) -> Self {
+        s.flush();
+        Sums {
+            gram: s.gram,
+            cross: s.cross,
+            yy: s.yy,
+            sw: s.sw,
+            swr: s.swr,
+            sw2: s.sw2,
+        }
+    }
+}
+
+impl From<Sums> for Stats {
+    fn from(s: Sums) -> Self {
+        let held = Held::new(s.gram.nrows(), s.cross.ncols());
+        Stats {
+            gram: s.gram,
+            cross: s.cross,
+            yy: s.yy,
+            sw: s.sw,
+            swr: s.swr,
+            sw2: s.sw2,
+            held,
+        }
+    }
 }
 
 impl Stats {
@@ -24,6 +72,7 @@ impl Stats {
             sw: 0.0,
             swr: 0.0,
             sw2: 0.0,
+            held: Held::new(p, d),
         }
     }
 
@@ -33,6 +82,7 @@ impl Stats {
 
     /// Multiplies every weight by `f` (so `Σ w²` by `f²`).
     pub fn scale(&mut self, f: f64) {
+        self.flush();
         self.gram *= f;
         self.cross *= f;
         self.yy *= f;
@@ -44,6 +94,7 @@ impl Stats {
     /// Adds one sample `(φ, u, r)` with weight `w`. Lengths are the caller's responsibility.
     /// Runs the AVX2 copy where the CPU has it (the same operations: the same bits).
     pub fn add(&mut self, w: f64, phi: &[f64], u: &[f64], r: f64) {
+        self.flush();
         #[cfg(target_arch = "x86_64")]
         if crate::simd::avx2() {
             // SAFETY: the CPU supports AVX2 (checked just above).
@@ -158,11 +209,13 @@ impl Solver {
         }
         let p = self.a.nrows();
         let inv = 1.0 / s.sw;
+        let (a, g) = (self.a.as_mut_slice(), s.gram.as_slice());
         for j in 0..p {
-            for i in j..p {
-                self.a[(i, j)] = s.gram[(i, j)] * inv;
+            let col = j * p + j..(j + 1) * p;
+            for (a, g) in a[col.clone()].iter_mut().zip(&g[col]) {
+                *a = g * inv;
             }
-            self.a[(j, j)] += ridge;
+            a[j * p + j] += ridge;
         }
         self.theta.copy_from(&s.cross);
         self.theta *= inv;
@@ -171,7 +224,7 @@ impl Solver {
                 *t += ridge * p;
             }
         }
-        cholesky_solve_lower(&mut self.a, &mut self.theta)?;
+        crate::cholesky::solve_lower(&mut self.a, &mut self.theta)?;
         // Σw‖u − θᵀφ‖² = Σw‖u‖² − 2 tr(θᵀC) + tr(θᵀGθ), with G symmetric from its lower
         // triangle: θ_kᵀ G θ_k = Σ_j θ_jk (G_jj θ_jk + 2 Σ_{i>j} G_ij θ_ik), on contiguous columns.
         let (g, c) = (s.gram.as_slice(), s.cross.as_slice());
@@ -190,7 +243,7 @@ impl Solver {
 
 /// `aᵀb` with four partial sums (vectorisable).
 #[inline(always)]
-fn dot(a: &[f64], b: &[f64]) -> f64 {
+pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
     let mut acc = [0.0; 4];
     let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
     let tail: f64 = ca
@@ -205,60 +258,4 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
         }
     }
     (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
-}
-
-/// Solves `A X = B` for symmetric positive definite `A` given by its lower triangle: overwrites
-/// the lower triangle of `A` with its Cholesky factor `L` and `B` with `X`. Fails with
-/// [`RwrError::Singular`] (B then holds garbage) when `A` is not numerically positive definite.
-#[inline(always)]
-fn cholesky_solve_lower(a: &mut DMatrix<f64>, b: &mut DMatrix<f64>) -> Result<()> {
-    let p = a.nrows();
-    // Right-looking factorisation on contiguous columns (the same operations, in the same
-    // order per element, as the textbook left-looking loop). The original diagonal, needed for
-    // the pivot test, is kept in the unused upper triangle (row 0).
-    for j in 1..p {
-        a[(0, j)] = a[(j, j)];
-    }
-    let m = a.as_mut_slice();
-    for j in 0..p {
-        let diag = if j == 0 { m[0] } else { m[j * p] };
-        let d = m[j * p + j];
-        // A pivot lost to rounding (relative to its diagonal) counts as singular.
-        if !(d > 1e-13 * diag && d.is_finite()) {
-            return Err(RwrError::Singular);
-        }
-        let d = d.sqrt();
-        m[j * p + j] = d;
-        for v in &mut m[j * p + j + 1..(j + 1) * p] {
-            *v /= d;
-        }
-        // Update the trailing columns: A[c.., c] −= L[c, j] L[c.., j].
-        let (left, right) = m.split_at_mut((j + 1) * p);
-        let lj = &left[j * p..(j + 1) * p];
-        for c in j + 1..p {
-            let l = lj[c];
-            let off = (c - j - 1) * p;
-            for (t, x) in right[off + c..off + p].iter_mut().zip(&lj[c..]) {
-                *t -= x * l;
-            }
-        }
-    }
-    let l = a.as_slice();
-    for c in 0..b.ncols() {
-        let col = &mut b.as_mut_slice()[c * p..(c + 1) * p];
-        // Forward substitution, column by column of L.
-        for k in 0..p {
-            let v = col[k] / l[k * p + k];
-            col[k] = v;
-            for (t, x) in col[k + 1..].iter_mut().zip(&l[k * p + k + 1..(k + 1) * p]) {
-                *t -= x * v;
-            }
-        }
-        // Back substitution with Lᵀ (columns of L are contiguous).
-        for i in (0..p).rev() {
-            let v = col[i] - dot(&l[i * p + i + 1..(i + 1) * p], &col[i + 1..]);
-            col[i] = v / l[i * p + i];
-        }
-    }
-    Ok(())
 }

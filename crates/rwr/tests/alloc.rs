@@ -33,6 +33,12 @@ fn online_observe_update_and_sampling_do_not_allocate() {
         }
         online.mean_into(&phi, &mut u).unwrap();
     }
+    // More samples than the statistics hold before folding them in, then the residual.
+    for _ in 0..100 {
+        online.observe(&phi, &u, 0.1, 0.7).unwrap();
+    }
+    online.update().unwrap();
+    online.mean_sq_residual();
     let _ = online.observe(&phi, &u, -1.0, 1.0); // the error path does not allocate either
     assert_eq!(osrl_testkit::allocations() - before, 0);
 }

@@ -4,6 +4,9 @@
 
 use nalgebra::DMatrix;
 
+/// Joints up to which [`Features::add_gain`] keeps its sums on the stack.
+const SMALL_N: usize = 16;
+
 /// Where each part of the two feature vectors lives, for `n` joints and `m` task dimensions.
 ///
 /// - controller `φ = [ẍᵀ, q̇ᵀ, (q − c)ᵀ?, 1]` (eq. 31; `ẍ` is `ẍ_ref` when commanding and the
@@ -84,15 +87,57 @@ impl Features {
     /// (`φ_d`-rows × m): `Â_i(q) = Θ_u + Σ_k (q_k − c_k) Θ_{u_j q_k}`.
     pub fn add_gain(&self, theta: &DMatrix<f64>, q: &[f64], center: &[f64], w: f64, a: &mut [f64]) {
         let n = self.n;
-        for k in 0..self.m {
-            for j in 0..n {
-                let mut g = theta[(j, k)];
-                if self.bilinear {
-                    for i in 0..n {
-                        g += (q[i] - center[i]) * theta[(3 * n + 1 + j * n + i, k)];
+        let rows = theta.nrows();
+        let (q, center) = (&q[..n], &center[..n]);
+        if self.bilinear && n <= SMALL_N {
+            // The same sums, every `j` at once (independent chains, each still in order of `i`).
+            let mut dq = [0.0; SMALL_N];
+            for i in 0..n {
+                dq[i] = q[i] - center[i];
+            }
+            for k in 0..self.m {
+                let col = &theta.as_slice()[k * rows..(k + 1) * rows];
+                let mut g = [0.0; SMALL_N];
+                g[..n].copy_from_slice(&col[..n]);
+                for i in 0..n {
+                    for j in 0..n {
+                        g[j] += dq[i] * col[3 * n + 1 + j * n + i];
                     }
                 }
-                a[k * n + j] += w * g;
+                for j in 0..n {
+                    a[k * n + j] += w * g[j];
+                }
+            }
+            return;
+        }
+        self.add_gain_columns(theta, q, center, w, a);
+    }
+
+    /// [`Features::add_gain`] one entry at a time (any number of joints).
+    fn add_gain_columns(
+        &self,
+        theta: &DMatrix<f64>,
+        q: &[f64],
+        center: &[f64],
+        w: f64,
+        a: &mut [f64],
+    ) {
+        let n = self.n;
+        let rows = theta.nrows();
+        let (q, center) = (&q[..n], &center[..n]);
+        for k in 0..self.m {
+            // Column k of Θ (contiguous), and row k of Â.
+            let col = &theta.as_slice()[k * rows..(k + 1) * rows];
+            let out = &mut a[k * n..(k + 1) * n];
+            for (j, o) in out.iter_mut().enumerate() {
+                let mut g = col[j];
+                if self.bilinear {
+                    let t = &col[3 * n + 1 + j * n..][..n];
+                    for ((qi, ci), ti) in q.iter().zip(center).zip(t) {
+                        g += (qi - ci) * ti;
+                    }
+                }
+                *o += w * g;
             }
         }
     }
@@ -123,6 +168,23 @@ mod tests {
         );
         // u_j (q_k − c_k), row j.
         assert_eq!(&d[10..], &[1.0, 0.0, -1.0, 2.0, 0.0, -2.0, 3.0, 0.0, -3.0]);
+    }
+
+    /// The stack path of `add_gain` gives the bits of the entry-by-entry one.
+    #[test]
+    fn the_gain_on_the_stack_has_the_bits_of_the_entry_by_entry_sums() {
+        for (n, m) in [(7, 3), (3, 2), (1, 1), (16, 6)] {
+            let f = Features::new(n, m, true, true);
+            let theta =
+                DMatrix::from_fn(f.dynamics_len(), m, |r, k| ((r * 7 + k * 3) as f64).sin());
+            let q: Vec<f64> = (0..n).map(|i| (i as f64 * 1.3).cos()).collect();
+            let c: Vec<f64> = (0..n).map(|i| (i as f64 * 0.7).sin()).collect();
+            let (mut a, mut b) = (vec![0.25; n * m], vec![0.25; n * m]);
+            f.add_gain(&theta, &q, &c, 0.37, &mut a);
+            f.add_gain_columns(&theta, &q, &c, 0.37, &mut b);
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&a), bits(&b), "n = {n}");
+        }
     }
 
     #[test]
