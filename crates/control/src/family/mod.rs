@@ -54,6 +54,10 @@ pub struct FamilyConfig {
     /// Draws per path before the sampler gives up (an error naming the last rejection). Default
     /// 500.
     pub max_draws: usize,
+    /// Every this many training episodes one runs the base figure-8 itself instead of a drawn
+    /// path (the 1st, the `(k + 1)`-th, …; 0: never). The drawn paths stay the same sequence,
+    /// only interleaved; held-out paths are drawn without it. Default 0.
+    pub base_every: usize,
 }
 
 impl Default for FamilyConfig {
@@ -74,6 +78,7 @@ impl Default for FamilyConfig {
             approach_speed: 0.15,
             torque_share: 0.8,
             max_draws: 500,
+            base_every: 0,
         }
     }
 }
