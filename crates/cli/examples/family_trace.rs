@@ -154,7 +154,7 @@ fn main() -> Result<()> {
         n,
         m,
         setup.sim().control_period,
-        setup.learner_config().clone(),
+        setup.training_learner_config(),
     )?;
     let mut ev = setup.evaluator(&truth)?;
     let mut evaluate = |l: &mut Learner| ev.evaluate(l);
