@@ -34,15 +34,21 @@ fn main() -> Result<()> {
         .filter(|n| (1..=20).contains(n))
         .context("PATHS_PER_KIND: a whole number from 1 to 20")?;
     let mut runs = Vec::new();
+    // The held-out paths of the figure-8-only model's set-up (the robot's default family), for
+    // both models: a family model trained on another family is tested on the same paths.
+    let mut paths = None;
     for file in [f8, fam] {
         let saved = SavedModel::load(std::path::Path::new(file))?;
         let setup = Setup::from_saved(&saved)?;
         let (_, mut learner, model) = saved.into_parts();
         let own = setup.evaluator(&model)?.evaluate(&mut learner)?;
         let mut rows = vec![("default figure-8".to_string(), point(&own))];
-        for p in held_out(&setup, per_kind)? {
-            let e = setup.evaluate_path(&model, &mut learner, &p)?;
-            rows.push((label(&p), point(&e)));
+        if paths.is_none() {
+            paths = Some(held_out(&setup, per_kind)?);
+        }
+        for p in paths.iter().flatten() {
+            let e = setup.evaluate_path(&model, &mut learner, p)?;
+            rows.push((label(p), point(&e)));
         }
         runs.push(rows);
     }

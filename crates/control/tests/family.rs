@@ -132,3 +132,39 @@ fn a_family_config_out_of_range_is_refused_with_its_field() {
     let e = s.draw().unwrap_err().to_string();
     assert!(e.contains("20 draws"), "{e}");
 }
+
+#[test]
+fn base_every_interleaves_the_base_figure8_without_changing_the_drawn_paths() {
+    let model = robots::planar3();
+    let with = |k: usize| {
+        let mut cfg = family();
+        cfg.family.base_every = k;
+        let base = cfg.build(&model).unwrap();
+        let home = check_reachable(&model, &base, &IkOptions::default())
+            .unwrap()
+            .q_start;
+        (FamilySampler::new(&model, &cfg, &home, 5).unwrap(), base)
+    };
+    // The drawn sequence on its own.
+    let (mut plain, base) = with(0);
+    let drawn: Vec<_> = (0..4).map(|_| plain.draw().unwrap().approached).collect();
+    // base_every = 0: the training paths are exactly the drawn ones.
+    let (mut off, _) = with(0);
+    for d in &drawn {
+        assert_eq!(&off.next_training_path().unwrap(), d);
+    }
+    // base_every = 3: episodes 0, 3, 6 run the base figure-8, the others the drawn sequence in
+    // order.
+    let (mut on, _) = with(3);
+    let mut next = drawn.iter();
+    for episode in 0..7 {
+        let p = on.next_training_path().unwrap();
+        if episode % 3 == 0 {
+            assert_eq!(p, base, "episode {episode}");
+        } else {
+            assert_eq!(&p, next.next().unwrap(), "episode {episode}");
+            assert_ne!(p, base);
+        }
+    }
+    assert!(next.next().is_none());
+}

@@ -20,10 +20,7 @@ pub struct FamilySource(pub FamilySampler);
 
 impl PathSource for FamilySource {
     fn next_path(&mut self) -> osrl_learn::Result<Trajectory> {
-        self.0
-            .draw()
-            .map(|p| p.approached)
-            .map_err(LearnError::Control)
+        self.0.next_training_path().map_err(LearnError::Control)
     }
 }
 

@@ -265,6 +265,17 @@ impl Setup {
     pub fn learner_config(&self) -> &LearnerConfig {
         &self.learner
     }
+
+    /// The learner config a training run starts from: [`Setup::learner_config`], for a family
+    /// whose `static_gravity_on_policy` is off with the static gravity model's on-policy learning
+    /// off (`docs/family.md`).
+    pub fn training_learner_config(&self) -> LearnerConfig {
+        let mut cfg = self.learner.clone();
+        if self.trajectory.kind == osrl_control::TrajectoryKind::Family {
+            cfg.gravity.static_on_policy &= self.trajectory.family.static_gravity_on_policy;
+        }
+        cfg
+    }
     pub fn train_config(&self) -> &TrainConfig {
         &self.train
     }
@@ -324,7 +335,7 @@ impl Setup {
         sim.reset(&self.home, &vec![0.0; truth.nq()])?;
         let (n, m) = (truth.nq(), truth.task_dim());
         let dt = self.sim.control_period;
-        let mut learner = Learner::new(n, m, dt, self.learner.clone())?;
+        let mut learner = Learner::new(n, m, dt, self.training_learner_config())?;
         let mut ev = self.evaluator(truth)?;
         let axes = truth.task_axes();
         let mut evaluate = |l: &mut Learner| ev.evaluate(l);
@@ -454,5 +465,20 @@ mod tests {
         let mut l = LearnerConfig::default();
         l.nominal.kp = vec![1.0; 2];
         assert!(s.clone().with_learner(l).is_err());
+    }
+
+    #[test]
+    fn family_training_turns_the_static_gravity_models_on_policy_learning_off_unless_asked() {
+        let s = Setup::new("planar3").unwrap();
+        let on = |s: &Setup| s.training_learner_config().gravity.static_on_policy;
+        // One path: the learner's own setting (on by default).
+        assert!(s.learner_config().gravity.static_on_policy && on(&s));
+        let mut fam = s.family_config();
+        let family = s.clone().with_trajectory(fam.clone()).unwrap();
+        assert!(!on(&family));
+        // The set-up's learner config itself is unchanged; asked for, it stays on.
+        assert!(family.learner_config().gravity.static_on_policy);
+        fam.family.static_gravity_on_policy = true;
+        assert!(on(&s.clone().with_trajectory(fam).unwrap()));
     }
 }

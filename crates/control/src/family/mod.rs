@@ -54,6 +54,18 @@ pub struct FamilyConfig {
     /// Draws per path before the sampler gives up (an error naming the last rejection). Default
     /// 500.
     pub max_draws: usize,
+    /// Every this many training episodes one runs the base figure-8 itself instead of a drawn
+    /// path (the 1st, the `(k + 1)`-th, …; 0: never). The drawn paths stay the same sequence,
+    /// only interleaved; held-out paths are drawn without it. Default 6: the base figure-8 is
+    /// the fastest path of the family, the one the controller is known to learn; without its own
+    /// episodes the family's slower data in the same receptive fields let its tracking drift.
+    pub base_every: usize,
+    /// The learner's static gravity model keeps learning on-policy during family training (as
+    /// `[learner.gravity] static_on_policy`, which must also be on). Default false: the family's
+    /// rest points (minimum-jerk via points, approach ends, the path clock's stops) are a few
+    /// still postures per receptive field scattered over the region, whose fitted slopes shift
+    /// `u0` along every other path through those fields.
+    pub static_gravity_on_policy: bool,
 }
 
 impl Default for FamilyConfig {
@@ -74,6 +86,8 @@ impl Default for FamilyConfig {
             approach_speed: 0.15,
             torque_share: 0.8,
             max_draws: 500,
+            base_every: 6,
+            static_gravity_on_policy: false,
         }
     }
 }

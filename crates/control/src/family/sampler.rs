@@ -59,6 +59,10 @@ pub struct FamilySampler {
     base_home: Vec<f64>,
     max_acceleration: f64,
     rng: ChaCha8Rng,
+    /// The base figure-8 (the `base_every` episodes run it).
+    base: Trajectory,
+    /// Training paths handed out so far ([`FamilySampler::next_training_path`]).
+    episodes: u64,
     /// The rejected draws so far.
     pub rejections: Rejections,
 }
@@ -90,6 +94,8 @@ impl FamilySampler {
             base_home: home.to_vec(),
             max_acceleration,
             rng: ChaCha8Rng::seed_from_u64(seed),
+            base,
+            episodes: 0,
             rejections: Rejections::default(),
         })
     }
@@ -115,6 +121,24 @@ impl FamilySampler {
              shrink [trajectory.family] size or the region",
             self.cfg.max_draws, self.rejections
         )))
+    }
+
+    /// The path of the next training episode, from home's task point: every `base_every`-th
+    /// one (the first included) the base figure-8 itself, otherwise a drawn path behind its
+    /// approach ([`FamilySampler::draw`]; the base episodes draw nothing, so the drawn paths
+    /// are the same sequence as without them).
+    ///
+    /// # Errors
+    /// As [`FamilySampler::draw`].
+    pub fn next_training_path(&mut self) -> Result<Trajectory> {
+        let k = self.cfg.base_every as u64;
+        let base = k > 0 && self.episodes.is_multiple_of(k);
+        self.episodes += 1;
+        if base {
+            Ok(self.base.clone())
+        } else {
+            Ok(self.draw()?.approached)
+        }
     }
 
     /// One draw and its checks; `None` when rejected.
