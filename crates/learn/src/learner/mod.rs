@@ -26,6 +26,8 @@ pub(crate) mod fixture;
 mod guards;
 mod hindsight;
 mod inertia;
+#[cfg(test)]
+mod inertia_tests;
 mod load;
 mod models;
 mod nominal;

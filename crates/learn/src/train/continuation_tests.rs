@@ -140,5 +140,8 @@ fn a_continuation_leaves_the_static_gravity_model_alone() {
     let (before, after) = static_model_around_continuation(true);
     assert!(before == after, "the static gravity model changed");
     let (before, after) = static_model_around_continuation(false);
-    assert!(before != after, "unfrozen, the run did not teach the static model anything");
+    assert!(
+        before != after,
+        "unfrozen, the run did not teach the static model anything"
+    );
 }
