@@ -40,6 +40,36 @@ impl Robot for Recording {
     }
 }
 
+/// A continuation of `seconds` (no babbling) on planar3 with `cfg`'s other settings.
+fn continue_for(robot: &mut Recording, learner: &mut Learner, seconds: f64, cfg: TrainConfig) {
+    let model = robots::planar3();
+    let traj = TrajectoryConfig::default().build(&model).unwrap();
+    let cfg = TrainConfig {
+        minutes: seconds / 60.0,
+        eval_every_minutes: 0.0,
+        babble: BabbleConfig {
+            minutes: 0.0,
+            ..BabbleConfig::default()
+        },
+        ..cfg
+    };
+    let axes = model.task_axes().to_vec();
+    let mut evaluate = |_: &mut Learner| Ok(Default::default());
+    let mut obs = OnEvaluation(|_: &crate::train::Progress| {});
+    Trainer::new(robot, learner, &traj, &axes, &cfg, &mut evaluate, &mut obs)
+        .unwrap()
+        .run()
+        .unwrap();
+}
+
+/// The fixture's robot, recording.
+fn recording() -> Recording {
+    Recording {
+        sim: fixture::robot(),
+        sent: Vec::new(),
+    }
+}
+
 /// With `hold_before_continuation`, the first command of a continuation on planar3 (a learner
 /// past its warm-up, at rest at home) is the hold's `ĝ(home)` — several N·m, not zero — and
 /// the arm stays at home for the first second instead of sagging while the first episode fades
@@ -47,20 +77,9 @@ impl Robot for Recording {
 #[test]
 fn a_continuation_starts_from_the_hold_not_from_zero_torque() {
     let (mut learner, _, _) = fixture::ready(fixture::config(), 200, 1000);
-    let model = robots::planar3();
-    let traj = TrajectoryConfig::default().build(&model).unwrap();
-    let mut robot = Recording {
-        sim: fixture::robot(),
-        sent: Vec::new(),
-    };
+    let mut robot = recording();
     let home = robot.measurement().clone();
     let cfg = TrainConfig {
-        minutes: 1.0 / 60.0,
-        eval_every_minutes: 0.0,
-        babble: BabbleConfig {
-            minutes: 0.0,
-            ..BabbleConfig::default()
-        },
         hold_before_continuation: true,
         // The hold alone: this fixture's `ĝ` comes from a short warm-up, and the static model
         // learning in the hold is what keeps the arm within 0.01 rad here (frozen: 0.019).
@@ -71,21 +90,7 @@ fn a_continuation_starts_from_the_hold_not_from_zero_torque() {
     let (q, zero) = (home.q.as_slice().to_vec(), [0.0; 3]);
     let scale = cfg.babble.gain_scale;
     pd_command(&mut learner.clone(), &home, &q, &zero, scale, &mut hold).unwrap();
-    let axes = model.task_axes().to_vec();
-    let mut evaluate = |_: &mut Learner| Ok(Default::default());
-    let mut obs = OnEvaluation(|_: &crate::train::Progress| {});
-    Trainer::new(
-        &mut robot,
-        &mut learner,
-        &traj,
-        &axes,
-        &cfg,
-        &mut evaluate,
-        &mut obs,
-    )
-    .unwrap()
-    .run()
-    .unwrap();
+    continue_for(&mut robot, &mut learner, 1.0, cfg);
     let big = hold.iter().fold(0.0, |m: f64, g| m.max(g.abs()));
     assert!(big > 1.0, "ĝ(home) = {hold:?} N·m");
     let first = &robot.sent[0];
@@ -100,36 +105,13 @@ fn a_continuation_starts_from_the_hold_not_from_zero_torque() {
 /// serialised, and before it.
 fn static_model_around_continuation(freeze: bool) -> (String, String) {
     let (mut learner, _, _) = fixture::ready(fixture::config(), 200, 1000);
-    let model = robots::planar3();
-    let traj = TrajectoryConfig::default().build(&model).unwrap();
-    let mut robot = fixture::robot();
+    let text = |l: &Learner| serde_json::to_string(l.gravity_static_model().unwrap()).unwrap();
+    let before = text(&learner);
     let cfg = TrainConfig {
-        minutes: 2.0 / 60.0,
-        eval_every_minutes: 0.0,
-        babble: BabbleConfig {
-            minutes: 0.0,
-            ..BabbleConfig::default()
-        },
         freeze_static_in_continuation: freeze,
         ..TrainConfig::default()
     };
-    let text = |l: &Learner| serde_json::to_string(l.gravity_static_model().unwrap()).unwrap();
-    let before = text(&learner);
-    let axes = model.task_axes().to_vec();
-    let mut evaluate = |_: &mut Learner| Ok(Default::default());
-    let mut obs = OnEvaluation(|_: &crate::train::Progress| {});
-    Trainer::new(
-        &mut robot,
-        &mut learner,
-        &traj,
-        &axes,
-        &cfg,
-        &mut evaluate,
-        &mut obs,
-    )
-    .unwrap()
-    .run()
-    .unwrap();
+    continue_for(&mut recording(), &mut learner, 2.0, cfg);
     (before, text(&learner))
 }
 
