@@ -257,6 +257,9 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
     /// # Errors
     /// The first robot, learner or evaluation error.
     pub fn run(mut self) -> Result<TrainSummary> {
+        // Only a continuation freezes the static gravity model (`on_policy`); a learner that
+        // ran one before learns again here.
+        self.learner.freeze_static_gravity(false);
         self.babble()?;
         self.on_policy()?;
         self.final_evaluation()?;
