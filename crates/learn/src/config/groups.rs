@@ -194,6 +194,12 @@ pub struct ExplorationConfig {
     /// warm-up (≥ 0). Default 0.15: light distal joints are not shaken by the noise that suits
     /// heavy proximal ones.
     pub cap: f64,
+    /// Largest rate of change of each joint's exploration torque (N·m/s): the noise's change
+    /// from one command to the next is clipped to `max_rate · dt`, whatever the process, the
+    /// blended `σ` (which jumps at an M-step) or the null-space projector (which moves with
+    /// `Â`) do. `None` (default): not bounded (`docs/decisions.md`, D24).
+    #[serde(default)]
+    pub max_rate: Option<f64>,
 }
 
 /// Guards on what the learner accepts and sends.
@@ -325,6 +331,7 @@ impl Default for ExplorationConfig {
             process: NoiseProcess::OrnsteinUhlenbeck,
             correlation_time: 0.1,
             cap: 0.15,
+            max_rate: None,
         }
     }
 }

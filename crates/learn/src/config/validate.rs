@@ -133,6 +133,11 @@ impl LearnerConfig {
         ensure(finite_at_least(e.cap, 0.0), || {
             format!("exploration.cap {} must be finite and ≥ 0", e.cap)
         })?;
+        if let Some(r) = e.max_rate {
+            ensure(finite_at_least(r, 0.0), || {
+                format!("exploration.max_rate {r} must be finite and ≥ 0 (N·m/s)")
+            })?;
+        }
         if let Some(cap) = self.experimental.null_space_cap {
             ensure(finite_at_least(cap, 0.0), || {
                 format!("experimental.null_space_cap {cap} must be finite and ≥ 0")

@@ -222,7 +222,7 @@ impl Learner {
 #[cfg(test)]
 mod tests {
     use super::CommandSource;
-    use crate::learner::fixture;
+    use crate::learner::fixture::{self, one_trained_field};
     use nalgebra::DMatrix;
     use rwr::OnlineRwr;
 
@@ -319,23 +319,6 @@ mod tests {
             .zip(b)
             .map(|(x, y)| (x - y).abs())
             .fold(0.0, f64::max)
-    }
-
-    /// One field trained by hand (a known `β`, confident) in a fixture learner with
-    /// `cfg`, and its centre in `(q, q̇)`.
-    fn one_trained_field(mut cfg: crate::LearnerConfig) -> (crate::Learner, Vec<f64>) {
-        cfg.controllers.trained_ess = 1e8;
-        let (mut learner, _, _) = fixture::ready(cfg, 200, 0);
-        let p = learner.features.controller_len();
-        let beta = DMatrix::from_fn(p, 3, |r, c| 0.02 * (r as f64 + 1.0) * (c as f64 - 1.0));
-        let rwr_cfg = learner.cfg.controllers.rwr.clone();
-        let models = fixture::models(&mut learner);
-        let local = models.locals.map.values_mut().next().unwrap();
-        local.rwr = OnlineRwr::with_theta(beta, rwr_cfg).unwrap();
-        local.theta_from = None; // set by hand: no update to spread
-        local.ess = 1e9;
-        let center = local.center.clone();
-        (learner, center)
     }
 
     /// The largest command change along a straight line in `q` from 0.5 rad away to the

@@ -106,12 +106,29 @@ pub(crate) struct Noise {
     /// Factor on the noise's standard deviation set by the driver (`Learner::set_exploration_gain`),
     /// in [0, 1]; 1 unless set.
     pub gain: f64,
+    /// The largest change of a joint's noise torque per command (N·m; `exploration.max_rate ·
+    /// dt`), `None` if unbounded; the noise torque last added and the one being made.
+    max_step: Option<f64>,
+    last: Vec<f64>,
+    next: Vec<f64>,
 }
 
 impl Noise {
     /// Processes of `kind` for `n` joints with correlation time `tau` (s; 0: white noise) at
-    /// control period `dt` (s), starting at 0.
+    /// control period `dt` (s), starting at 0, unbounded in rate.
+    #[cfg(test)]
     pub fn new(n: usize, kind: NoiseProcess, tau: f64, dt: f64) -> Self {
+        Self::with_rate(n, kind, tau, dt, None)
+    }
+
+    /// As [`Noise::new`], with the noise torque's rate of change bounded by `max_rate` (N·m/s).
+    pub fn with_rate(
+        n: usize,
+        kind: NoiseProcess,
+        tau: f64,
+        dt: f64,
+        max_rate: Option<f64>,
+    ) -> Self {
         let ds = if tau > 0.0 { dt / tau } else { f64::INFINITY };
         let mut iso = Knots::new(n, ds);
         if matches!(
@@ -125,6 +142,9 @@ impl Noise {
             null: iso.clone(),
             iso,
             gain: 1.0,
+            max_step: max_rate.map(|r| r * dt),
+            last: vec![0.0; n],
+            next: vec![0.0; n],
         }
     }
 
@@ -132,14 +152,44 @@ impl Noise {
     pub fn reset(&mut self) {
         self.iso.reset();
         self.null.reset();
+        self.last.fill(0.0);
     }
 }
 
 /// Adds the exploration noise of standard deviation `sigma` (N·m) at `q` to `u`: first the
 /// null-space part (if configured and `Â` is known), then the capped isotropic part. Each
-/// process advances one period (`n` draws each, null-space first).
+/// process advances one period (`n` draws each, null-space first). With `exploration.max_rate`
+/// the sum of both parts changes by at most `max_rate · dt` per joint from the last command's.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn explore<R: Rng + ?Sized>(
+    cfg: &LearnerConfig,
+    features: &Features,
+    models: &Models,
+    ws: &mut Scratch,
+    noise: &mut Noise,
+    q: &[f64],
+    sigma: f64,
+    rng: &mut R,
+    u: &mut [f64],
+) {
+    let Some(max_step) = noise.max_step else {
+        add_noise(cfg, features, models, ws, noise, q, sigma, rng, u);
+        return;
+    };
+    // Bounded rate: the noise made in `next`, then moved from the last by at most `max_step`.
+    let mut next = std::mem::take(&mut noise.next);
+    next.fill(0.0);
+    add_noise(cfg, features, models, ws, noise, q, sigma, rng, &mut next);
+    for ((v, z), l) in u.iter_mut().zip(&next).zip(noise.last.iter_mut()) {
+        *l = z.clamp(*l - max_step, *l + max_step);
+        *v += *l;
+    }
+    noise.next = next;
+}
+
+/// The unbounded noise of [`explore`] added to `u`.
+#[allow(clippy::too_many_arguments)]
+fn add_noise<R: Rng + ?Sized>(
     cfg: &LearnerConfig,
     features: &Features,
     models: &Models,

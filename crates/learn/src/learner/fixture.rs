@@ -100,3 +100,19 @@ pub fn warm_up_with_inverse_inertia(k: usize) -> (Vec<Measurement>, Vec<f64>) {
     let inv = m.try_inverse().unwrap();
     (out, (0..3).map(|j| inv[(j, j)]).collect())
 }
+
+/// One field trained by hand (a known `β`, confident) in a fixture learner with `cfg`, and
+/// its centre in `(q, q̇)`.
+pub fn one_trained_field(mut cfg: LearnerConfig) -> (Learner, Vec<f64>) {
+    cfg.controllers.trained_ess = 1e8;
+    let (mut learner, _, _) = ready(cfg, 200, 0);
+    let p = learner.features.controller_len();
+    let beta = nalgebra::DMatrix::from_fn(p, 3, |r, c| 0.02 * (r as f64 + 1.0) * (c as f64 - 1.0));
+    let rwr_cfg = learner.cfg.controllers.rwr.clone();
+    let local = models(&mut learner).locals.map.values_mut().next().unwrap();
+    local.rwr = rwr::OnlineRwr::with_theta(beta, rwr_cfg).unwrap();
+    local.theta_from = None; // set by hand: no update to spread
+    local.ess = 1e9;
+    let center = local.center.clone();
+    (learner, center)
+}

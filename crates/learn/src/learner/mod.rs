@@ -20,6 +20,8 @@ mod adapt;
 mod command;
 mod cost;
 mod exploration;
+#[cfg(test)]
+mod exploration_rate_tests;
 mod features;
 #[cfg(test)]
 pub(crate) mod fixture;

@@ -77,11 +77,12 @@ impl Learner {
         let x = &cfg.experimental;
         let features = Features::new(n, m, x.position_features, x.dynamics_bilinear);
         let ws = Scratch::new(n, m, features.controller_len(), features.dynamics_len());
-        let noise = Noise::new(
+        let noise = Noise::with_rate(
             n,
             cfg.exploration.process,
             cfg.exploration.correlation_time,
             dt,
+            cfg.exploration.max_rate,
         );
         let g = &cfg.guards;
         let rates = scaled::torque_rate_limits(g.torque_rate_limit, &g.torque_limits, n);

@@ -101,6 +101,13 @@ pub struct TrainConfig {
     /// The same after an episode braked or aborted on its task error (s): short, so the PD
     /// return home takes over before the error grows. Default 0.05.
     pub brake_switch_seconds: f64,
+    /// Largest change of a joint's command from one control period to the next in the
+    /// on-policy phase (N·m per period; episodes, their fades and the returns home), applied
+    /// after the braking step's check (`curriculum.brake_step` still sees the command before
+    /// it) and counted in `rate_limited`. `None` (default): only the torque-rate limit
+    /// (`docs/decisions.md`, D24).
+    #[serde(default)]
+    pub command_step_limit: Option<f64>,
     /// A continuation (no babbling before the on-policy phase, as in `osrl adapt`) starts with
     /// the hold at home under PD with `ĝ`, from the hold's own command; false: the first
     /// episode's fade (`first_switch_seconds`) starts from zero torque, the arm sagging under
@@ -151,6 +158,7 @@ impl Default for TrainConfig {
             switch_seconds: 0.25,
             first_switch_seconds: 5.0,
             brake_switch_seconds: 0.05,
+            command_step_limit: None,
             hold_before_continuation: true,
             freeze_static_in_continuation: true,
             home_tolerance: 0.01,
@@ -203,6 +211,10 @@ impl TrainConfig {
             (
                 "brake_switch_seconds",
                 finite_nonneg(self.brake_switch_seconds),
+            ),
+            (
+                "command_step_limit",
+                self.command_step_limit.is_none_or(finite_pos),
             ),
             (
                 "quiet_hold_gain",

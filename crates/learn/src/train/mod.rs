@@ -18,6 +18,8 @@ mod paths;
 #[cfg(test)]
 mod paths_tests;
 mod safety;
+#[cfg(test)]
+mod step_limit_tests;
 mod trainer;
 
 pub use config::{BabbleConfig, TrainConfig};

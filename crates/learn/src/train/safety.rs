@@ -70,6 +70,21 @@ impl StepMonitor {
             .position(|((a, b), l)| (a - b).abs() > *l)
     }
 
+    /// Moves each joint of `u` to within `limit` (N·m) of the last command sent; whether any
+    /// joint moved.
+    pub fn limit_step(&self, u: &mut [f64], limit: f64) -> bool {
+        if !self.has_last {
+            return false;
+        }
+        let mut limited = false;
+        for (v, l) in u.iter_mut().zip(&self.last) {
+            let c = v.clamp(l - limit, l + limit);
+            limited |= c != *v;
+            *v = c;
+        }
+        limited
+    }
+
     /// The last command sent, into `u` (unchanged if none was).
     pub fn repeat_last(&self, u: &mut [f64]) {
         if self.has_last {
@@ -126,5 +141,23 @@ mod tests {
         assert!((m.curve[0].max_command_step - 0.8).abs() < 1e-12);
         assert!((m.curve[1].max_command_step - 0.1).abs() < 1e-12);
         assert!((m.max_step - 0.8).abs() < 1e-12);
+    }
+
+    /// `limit_step` moves every joint to within the limit of the last command sent (and says
+    /// so), leaves a command within it unchanged, and does nothing before the first command.
+    #[test]
+    fn a_limited_step_never_exceeds_its_bound() {
+        let mut m = StepMonitor::new(2, 0.002);
+        let mut u = [5.0, -5.0];
+        assert!(!m.limit_step(&mut u, 0.03));
+        assert_eq!(u, [5.0, -5.0]);
+        m.sent(&u);
+        let mut v = [5.5, -5.01];
+        assert!(m.limit_step(&mut v, 0.03));
+        assert!((v[0] - 5.03).abs() < 1e-12 && v[1] == -5.01, "{v:?}");
+        m.sent(&v);
+        let mut w = [5.04, -5.0];
+        assert!(!m.limit_step(&mut w, 0.03));
+        assert_eq!(w, [5.04, -5.0]);
     }
 }

@@ -49,6 +49,9 @@ pub struct TrainSummary {
     /// every command it sends; the learner's own count is in `stats.rate_limited`).
     #[serde(default)]
     pub driver_rate_limited: u64,
+    /// On-policy commands held to `TrainConfig::command_step_limit`.
+    #[serde(default)]
+    pub step_limited: u64,
     /// The largest on-policy command step per bin of simulated time.
     #[serde(default)]
     pub step_curve: Vec<StepPoint>,
@@ -77,9 +80,10 @@ impl TrainSummary {
             .map(|(t, _)| *t)
     }
 
-    /// Commands held to the torque-rate limit, by the learner or by the driver.
+    /// Commands held to the torque-rate limit, by the learner or by the driver, or to the
+    /// on-policy step limit (`TrainConfig::command_step_limit`).
     pub fn rate_limited(&self) -> u64 {
-        self.stats.rate_limited + self.driver_rate_limited
+        self.stats.rate_limited + self.driver_rate_limited + self.step_limited
     }
 }
 
@@ -134,6 +138,8 @@ pub struct Trainer<'a, R: Robot + ?Sized> {
     /// The torque-rate limit on the driver's own (PD) commands, and how often it acted.
     pub(super) rate: RateLimiter,
     pub(super) rate_limited: u64,
+    /// On-policy commands held to `command_step_limit`.
+    step_limited: u64,
     /// The babbling noise process (unit variance per joint).
     pub(super) babble_noise: Vec<f64>,
     /// The integral of the joint error while holding home (rad·s), and the returns home that
@@ -222,6 +228,7 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
             jumped: false,
             rate,
             rate_limited: 0,
+            step_limited: 0,
             babble_noise: vec![0.0; n],
             integral: vec![0.0; n],
             unsettled_starts: 0,
@@ -317,6 +324,13 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
             self.jumped = true;
             self.jumps_by_joint[j] += 1;
         }
+        if let Some(limit) = self.cfg.command_step_limit {
+            if self.progress.phase == Phase::OnPolicy
+                && self.steps_seen.limit_step(&mut self.u, limit)
+            {
+                self.step_limited += 1;
+            }
+        }
         if self.rate.apply(&mut self.u) {
             self.rate_limited += 1;
         }
@@ -392,6 +406,7 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
             clipped_on_policy: self.learner.stats().clipped - self.clipped_before
                 + self.driver_clipped,
             driver_rate_limited: self.rate_limited,
+            step_limited: self.step_limited,
             stats: self.learner.stats(),
             n_local_models: self.learner.n_local_models(),
             unsettled_starts: self.unsettled_starts,
