@@ -67,21 +67,38 @@ pub(crate) fn exp4(x: V) -> V {
     map2(p, scale, |p, s| (1.0 + p) * s)
 }
 
-/// Four elements from `s[i..]`, the lanes from `rem` on zero.
+/// Four elements from `s[i..]`, the lanes from `rem` on zero; with `AVX` (set only where the
+/// CPU has AVX2, checked at run time) a partial vector is one masked load instead of a branch
+/// per lane (the same values).
 #[inline(always)]
-pub(crate) fn load(s: &[f64], i: usize, rem: usize) -> V {
+pub(crate) fn load<const AVX: bool>(s: &[f64], i: usize, rem: usize) -> V {
     if rem >= 4 {
         s[i..i + 4].try_into().unwrap()
+    } else if cfg!(target_arch = "x86_64") && AVX {
+        let s = &s[i..i + rem];
+        // SAFETY: `AVX` is set only where the CPU has AVX2; the mask enables the `rem` lanes
+        // of `s` (masked lanes are not accessed).
+        #[cfg(target_arch = "x86_64")]
+        return unsafe { masked::load(s.as_ptr(), rem) };
+        #[cfg(not(target_arch = "x86_64"))]
+        unreachable!()
     } else {
         std::array::from_fn(|l| if l < rem { s[i + l] } else { 0.0 })
     }
 }
 
-/// Stores the first `min(rem, 4)` lanes of `v` at `s[i..]`.
+/// Stores the first `min(rem, 4)` lanes of `v` at `s[i..]` (with `AVX`: as [`load`]).
 #[inline(always)]
-pub(crate) fn store(s: &mut [f64], i: usize, rem: usize, v: V) {
+pub(crate) fn store<const AVX: bool>(s: &mut [f64], i: usize, rem: usize, v: V) {
     if rem >= 4 {
         s[i..i + 4].copy_from_slice(&v);
+    } else if cfg!(target_arch = "x86_64") && AVX {
+        let s = &mut s[i..i + rem];
+        // SAFETY: as in `load`.
+        #[cfg(target_arch = "x86_64")]
+        unsafe {
+            masked::store(s.as_mut_ptr(), rem, v)
+        };
     } else {
         // Lane by lane (a loop of one store would become a call of `memcpy`).
         if rem > 0 {
@@ -92,6 +109,52 @@ pub(crate) fn store(s: &mut [f64], i: usize, rem: usize, v: V) {
         }
         if rem > 2 {
             s[i + 2] = v[2];
+        }
+    }
+}
+
+/// Masked AVX2 loads and stores of the first `k ≤ 4` lanes.
+#[cfg(target_arch = "x86_64")]
+mod masked {
+    use super::V;
+    use std::arch::x86_64::*;
+
+    /// Lane masks: the first `k` lanes enabled (the sign bit set).
+    static MASKS: [[i64; 4]; 5] = [
+        [0, 0, 0, 0],
+        [-1, 0, 0, 0],
+        [-1, -1, 0, 0],
+        [-1, -1, -1, 0],
+        [-1, -1, -1, -1],
+    ];
+
+    /// The first `k` of the four values at `p`, the others zero.
+    ///
+    /// # Safety
+    /// AVX2; `p` valid for reading `k ≤ 4` values.
+    #[target_feature(enable = "avx2")]
+    #[inline]
+    pub(super) unsafe fn load(p: *const f64, k: usize) -> V {
+        let mut out = [0.0; 4];
+        // SAFETY: the caller's contract; `MASKS[k]` holds 4 `i64`.
+        unsafe {
+            let m = _mm256_loadu_si256(MASKS[k].as_ptr().cast());
+            _mm256_storeu_pd(out.as_mut_ptr(), _mm256_maskload_pd(p, m));
+        }
+        out
+    }
+
+    /// Writes the first `k` lanes of `v` to `p`.
+    ///
+    /// # Safety
+    /// AVX2; `p` valid for writing `k ≤ 4` values.
+    #[target_feature(enable = "avx2")]
+    #[inline]
+    pub(super) unsafe fn store(p: *mut f64, k: usize, v: V) {
+        // SAFETY: the caller's contract; `MASKS[k]` holds 4 `i64`.
+        unsafe {
+            let m = _mm256_loadu_si256(MASKS[k].as_ptr().cast());
+            _mm256_maskstore_pd(p, m, _mm256_loadu_pd(v.as_ptr()));
         }
     }
 }

@@ -87,14 +87,15 @@ pub(crate) fn wide_len(nk: usize) -> usize {
 
 /// The full-metric step (d) of one RF for `nk > 4`, with the arguments of `full_step`
 /// (`fast/fused.rs`, there: what each is); `NK > 0` fixes `nk` at compile
-/// time. Uses `ws.dx`, `ws.mdx`, `ws.row` and `ws.wide`.
+/// time; `AVX` (set only where the CPU has AVX2 and FMA) takes masked loads and stores for
+/// the partial vectors (the same results). Uses `ws.dx`, `ws.mdx`, `ws.row` and `ws.wide`.
 ///
 /// `M·D` and `D = MᵀM` combine rows of `D` and `M` read in place four columns at a time (the
 /// last row from a padded copy); the element-wise step runs over each row of the upper
 /// triangle in place, four columns at a time from the diagonal, the last vector partial.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-pub(crate) fn wide_step<const NK: usize>(
+pub(crate) fn wide_step<const NK: usize, const AVX: bool>(
     nk: usize,
     p: &Params,
     m: &mut [f64],
@@ -163,8 +164,8 @@ pub(crate) fn wide_step<const NK: usize>(
     for n in 0..nk {
         let (mut a, mut sq) = (splat(0.0), splat(0.0));
         for c in (n..nk).step_by(4) {
-            let mv = load(m, n * nk + c, nk - c);
-            a = fma(mv, load(dxp, c, 4), a);
+            let mv = load::<AVX>(m, n * nk + c, nk - c);
+            a = fma(mv, load::<AVX>(dxp, c, 4), a);
             sq = fma(mv, mv, sq);
         }
         (mdx[n], ss[n]) = (hsum(a), hsum(sq));
@@ -175,30 +176,31 @@ pub(crate) fn wide_step<const NK: usize>(
         let (mdx, ss) = (splat(mdx[n]), splat(ss[n]));
         for c in (n..nk).step_by(4) {
             let (k, rem, kg) = (n * nk + c, nk - c, n * s + c);
-            let x = load(dxp, c, 4);
+            let x = load::<AVX>(dxp, c, 4);
             let dqdm = mul(mul(splat(2.0), x), mdx);
             let dwdm = mul(dqdm, splat(dwdq));
-            let dj2 = mul(load(gb, kg, 4), splat(4.0 * pen));
+            let dj2 = mul(load::<AVX>(gb, kg, 4), splat(4.0 * pen));
             let g = fma(splat(ca), dj2, mul(splat(cb), dwdm));
-            store(gb, kg, 4, g);
+            store::<AVX>(gb, kg, 4, g);
             if meta {
-                let mv = load(m, k, rem);
+                let mv = load::<AVX>(m, k, rem);
                 let ddw = fma(
                     mul(splat(ddwdqdq), dqdm),
                     dqdm,
                     mul(mul(splat(2.0 * dwdq), x), x),
                 );
-                let dd_ss = map2(load(ddp, c, 4), ss, |a, b| a + b);
+                let dd_ss = map2(load::<AVX>(ddp, c, 4), ss, |a, b| a + b);
                 let ddj2 = mul(splat(4.0 * pen), fma(mv, mv, dd_ss));
                 let gg = fma(
                     mul(splat(cc), dwdm),
                     dwdm,
                     fma(splat(ca), ddj2, mul(splat(cb), ddw)),
                 );
-                store(ggb, kg, 4, gg);
-                let aux = mul(mul(splat(rate), g), load(hm, k, rem)).map(|v| v.clamp(-0.1, 0.1));
-                let bn = sub(load(b, k, rem), aux).map(|v| v.clamp(-10.0, 10.0));
-                store(b, k, rem, bn);
+                store::<AVX>(ggb, kg, 4, gg);
+                let aux =
+                    mul(mul(splat(rate), g), load::<AVX>(hm, k, rem)).map(|v| v.clamp(-0.1, 0.1));
+                let bn = sub(load::<AVX>(b, k, rem), aux).map(|v| v.clamp(-10.0, 10.0));
+                store::<AVX>(b, k, rem, bn);
             }
         }
     }
@@ -207,25 +209,25 @@ pub(crate) fn wide_step<const NK: usize>(
     for n in 0..nk {
         for c in (n..nk).step_by(4) {
             let (k, rem, kg) = (n * nk + c, nk - c, n * s + c);
-            let (g, mv) = (load(gb, kg, 4), load(m, k, rem));
+            let (g, mv) = (load::<AVX>(gb, kg, 4), load::<AVX>(m, k, rem));
             let a = if meta {
-                let an = exp4(load(b, k, rem));
-                let keep =
-                    fma(sub(splat(0.0), an), load(ggb, kg, 4), splat(1.0)).map(|v| v.max(0.0));
-                let hn = fma(load(hm, k, rem), keep, sub(splat(0.0), mul(an, g)));
-                store(hm, k, rem, hn);
+                let an = exp4(load::<AVX>(b, k, rem));
+                let keep = fma(sub(splat(0.0), an), load::<AVX>(ggb, kg, 4), splat(1.0))
+                    .map(|v| v.max(0.0));
+                let hn = fma(load::<AVX>(hm, k, rem), keep, sub(splat(0.0), mul(an, g)));
+                store::<AVX>(hm, k, rem, hn);
                 an
             } else {
-                load(alpha, k, rem)
+                load::<AVX>(alpha, k, rem)
             };
             let dm = mul(a, g);
-            store(
+            store::<AVX>(
                 alpha,
                 k,
                 rem,
                 map2(dm, a, |dm, a| if dm > thr { a * 0.5 } else { a }),
             );
-            store(
+            store::<AVX>(
                 m,
                 k,
                 rem,

@@ -49,7 +49,10 @@ fn four_at_a_time_gives_the_bits_of_one_at_a_time() {
         let want: Vec<(usize, u64)> = (0..n)
             .map(|i| {
                 let (c, m) = (&centers[2 * i..2 * i + 2], &ms[4 * i..4 * i + 4]);
-                (i, quad(false, c, m, &x, &mut dx, f64::INFINITY).to_bits())
+                (
+                    i,
+                    quad(false, false, c, m, &x, &mut dx, f64::INFINITY).to_bits(),
+                )
             })
             .collect();
         assert_eq!(

@@ -26,7 +26,9 @@ fn both(nk: usize, meta: bool, seed: u64) -> ([Vec<f64>; 5], [Vec<f64>; 5]) {
     // The step must not depend on what its scratch held before.
     ws2.wide.fill(f64::NAN);
     let [m2, d2, a2, b2, h2] = &mut w;
-    crate::fast::wide::wide_step::<0>(nk, p, m2, d2, a2, b2, h2, acc, dwdq, ddwdqdq, &mut ws2);
+    crate::fast::wide::wide_step::<0, false>(
+        nk, p, m2, d2, a2, b2, h2, acc, dwdq, ddwdqdq, &mut ws2,
+    );
     (r, w)
 }
 
