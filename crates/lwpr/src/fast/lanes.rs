@@ -1,6 +1,10 @@
 //! Four `f64` lanes (`[f64; 4]`) and their operations, for the full-metric step above 4
 //! dimensions (`fast/wide.rs`): written lane by lane, so that the compiler maps them onto AVX2
-//! registers, with fused multiply-adds (`f64::mul_add`, correctly rounded on every CPU).
+//! registers, with fused multiply-adds (`f64::mul_add`, correctly rounded on every CPU). With
+//! `AVX` some take AVX2 intrinsics (`lanes_avx.rs`) for the same values.
+
+#[cfg(target_arch = "x86_64")]
+use crate::fast::lanes_avx;
 
 /// Four lanes.
 pub(crate) type V = [f64; 4];
@@ -36,10 +40,29 @@ pub(crate) fn fma(a: V, b: V, c: V) -> V {
     ]
 }
 
-/// `(v₀ + v₁) + (v₂ + v₃)`.
+/// `(v₀ + v₁) + (v₂ + v₃)`; with `AVX` (set only where the CPU has AVX2) unpacked in
+/// registers (the same value; the plain form makes the compiler keep the lanes of the sums
+/// that feed it as two shuffled halves).
 #[inline(always)]
-pub(crate) fn hsum(v: V) -> f64 {
+pub(crate) fn hsum<const AVX: bool>(v: V) -> f64 {
+    #[cfg(target_arch = "x86_64")]
+    if AVX {
+        // SAFETY: `AVX` is set only where the CPU has AVX2.
+        return unsafe { lanes_avx::hsum(v) };
+    }
     (v[0] + v[1]) + (v[2] + v[3])
+}
+
+/// `max(0, max_i |v_i|)` as `numeric::max_abs(0.0, v)` (NaNs ignored; the same value); with
+/// `AVX` four lanes in one register.
+#[inline(always)]
+pub(crate) fn max_abs0<const AVX: bool>(v: &[f64]) -> f64 {
+    #[cfg(target_arch = "x86_64")]
+    if AVX {
+        // SAFETY: `AVX` is set only where the CPU has AVX2.
+        return unsafe { lanes_avx::max_abs0(v) };
+    }
+    crate::numeric::max_abs(0.0, v)
 }
 
 /// `e^x` lane-wise for `x ∈ [−10, 10]` (the clipped `b = ln α`): the scheme of
@@ -79,7 +102,7 @@ pub(crate) fn load<const AVX: bool>(s: &[f64], i: usize, rem: usize) -> V {
         // SAFETY: `AVX` is set only where the CPU has AVX2; the mask enables the `rem` lanes
         // of `s` (masked lanes are not accessed).
         #[cfg(target_arch = "x86_64")]
-        return unsafe { masked::load(s.as_ptr(), rem) };
+        return unsafe { lanes_avx::load(s.as_ptr(), rem) };
         #[cfg(not(target_arch = "x86_64"))]
         unreachable!()
     } else {
@@ -97,7 +120,7 @@ pub(crate) fn store<const AVX: bool>(s: &mut [f64], i: usize, rem: usize, v: V) 
         // SAFETY: as in `load`.
         #[cfg(target_arch = "x86_64")]
         unsafe {
-            masked::store(s.as_mut_ptr(), rem, v)
+            lanes_avx::store(s.as_mut_ptr(), rem, v)
         };
     } else {
         // Lane by lane (a loop of one store would become a call of `memcpy`).
@@ -109,52 +132,6 @@ pub(crate) fn store<const AVX: bool>(s: &mut [f64], i: usize, rem: usize, v: V) 
         }
         if rem > 2 {
             s[i + 2] = v[2];
-        }
-    }
-}
-
-/// Masked AVX2 loads and stores of the first `k ≤ 4` lanes.
-#[cfg(target_arch = "x86_64")]
-mod masked {
-    use super::V;
-    use std::arch::x86_64::*;
-
-    /// Lane masks: the first `k` lanes enabled (the sign bit set).
-    static MASKS: [[i64; 4]; 5] = [
-        [0, 0, 0, 0],
-        [-1, 0, 0, 0],
-        [-1, -1, 0, 0],
-        [-1, -1, -1, 0],
-        [-1, -1, -1, -1],
-    ];
-
-    /// The first `k` of the four values at `p`, the others zero.
-    ///
-    /// # Safety
-    /// AVX2; `p` valid for reading `k ≤ 4` values.
-    #[target_feature(enable = "avx2")]
-    #[inline]
-    pub(super) unsafe fn load(p: *const f64, k: usize) -> V {
-        let mut out = [0.0; 4];
-        // SAFETY: the caller's contract; `MASKS[k]` holds 4 `i64`.
-        unsafe {
-            let m = _mm256_loadu_si256(MASKS[k].as_ptr().cast());
-            _mm256_storeu_pd(out.as_mut_ptr(), _mm256_maskload_pd(p, m));
-        }
-        out
-    }
-
-    /// Writes the first `k` lanes of `v` to `p`.
-    ///
-    /// # Safety
-    /// AVX2; `p` valid for writing `k ≤ 4` values.
-    #[target_feature(enable = "avx2")]
-    #[inline]
-    pub(super) unsafe fn store(p: *mut f64, k: usize, v: V) {
-        // SAFETY: the caller's contract; `MASKS[k]` holds 4 `i64`.
-        unsafe {
-            let m = _mm256_loadu_si256(MASKS[k].as_ptr().cast());
-            _mm256_maskstore_pd(p, m, _mm256_loadu_pd(v.as_ptr()));
         }
     }
 }

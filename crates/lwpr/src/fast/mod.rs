@@ -20,6 +20,8 @@
 //! | RF updates in groups of 2–3 | 2-D kernel and regression, full metric, one output per RF | [`group`] |
 //! | fused full-metric step | full metric, up to 4 dimensions | [`fused`] |
 //! | four-lane full-metric step | full metric, 5 dimensions or more | [`wide`] |
+//! | its partial vectors, `max \|M\|` and row sums in AVX2 registers | the four-lane step on AVX2 | [`lanes_avx`] |
+//! | distance rows in one AVX2 register | full metric, 5 dimensions or more: activation pass, predictions, activation queries | [`dot`] |
 //!
 //! Tests run single specialisations off through the flags `F` of [`Fast`] (production runs
 //! [`ALL`]) and compare with the reference.
@@ -28,6 +30,8 @@ pub(crate) mod dot;
 pub(crate) mod fused;
 pub(crate) mod group;
 pub(crate) mod lanes;
+#[cfg(target_arch = "x86_64")]
+pub(crate) mod lanes_avx;
 pub(crate) mod plane_metric;
 pub(crate) mod plane_pls;
 pub(crate) mod plane_quad;
