@@ -1,8 +1,10 @@
 //! AVX2 forms of some lane operations of `lanes.rs` (the same values): masked loads and
 //! stores of a row's partial last vector, the horizontal sum, `max |v|`.
 
-use crate::fast::lanes::V;
 use std::arch::x86_64::*;
+
+/// Four lanes (`lanes::V`; not imported, so that `lanes.rs` and this file form no circle).
+type V = [f64; 4];
 
 /// Lane masks: the first `k` lanes enabled (the sign bit set).
 static MASKS: [[i64; 4]; 5] = [
