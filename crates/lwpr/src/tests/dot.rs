@@ -3,19 +3,9 @@
 
 use crate::distance::quad;
 use crate::numeric::dot;
-use rand::{RngExt, SeedableRng};
+use crate::tests::activation::draw;
+use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-
-/// A value drawn from a mix of scales, with zeros of both signs.
-fn draw(rng: &mut ChaCha8Rng) -> f64 {
-    match rng.random_range(0..6) {
-        0 => 0.0,
-        1 => -0.0,
-        2 => rng.random_range(-1e-3..1e-3),
-        3 => rng.random_range(-1e3..1e3),
-        _ => rng.random_range(-2.0..2.0),
-    }
-}
 
 #[cfg(target_arch = "x86_64")]
 #[test]
