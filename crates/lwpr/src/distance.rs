@@ -9,9 +9,12 @@
 /// floating point): once a partial sum reaches `bound`, the RF cannot matter to the caller and
 /// that partial sum (`≥ bound`) is returned early. Below `bound` the result is the full sum,
 /// bit for bit the same as without a bound (same terms, same order). Pass `f64::INFINITY` for
-/// the exact value.
+/// the exact value. `avx` (the same bits; a constant after inlining) may be set only where the CPU has AVX2, checked at
+/// run time by the caller (`fast::has_avx2`): above 4 dimensions the full metric's row sums
+/// then run in one AVX2 register (`fast/dot.rs`).
 #[inline(always)]
 pub(crate) fn quad(
+    avx: bool,
     diag: bool,
     c: &[f64],
     md: &[f64],
@@ -27,7 +30,7 @@ pub(crate) fn quad(
             2 => quad_full_n::<2>(c, md, x, bound),
             3 => quad_full_n::<3>(c, md, x, bound),
             4 => quad_full_n::<4>(c, md, x, bound),
-            _ => quad_full(c, md, x, dx, bound),
+            _ => quad_full(avx, c, md, x, dx, bound),
         }
     }
 }
@@ -94,10 +97,22 @@ pub(crate) fn quad_full_n<const N: usize>(c: &[f64], m: &[f64], x: &[f64], bound
     q
 }
 
-/// Full metric, any size: `Σ_n (Σ_{i≥n} M_ni dx_i)²` (the inner sums by [`crate::numeric::dot`]),
-/// checking the bound after each row.
+/// `numeric::dot(row, dx)`, on AVX2 when `avx` (see [`quad`]; the same bits).
 #[inline(always)]
-fn quad_full(c: &[f64], m: &[f64], x: &[f64], dx: &mut [f64], bound: f64) -> f64 {
+fn row_dot(avx: bool, row: &[f64], dx: &[f64]) -> f64 {
+    #[cfg(target_arch = "x86_64")]
+    if avx {
+        // SAFETY: `avx` is set only where the CPU has AVX2 (see `quad`).
+        return unsafe { crate::fast::dot::dot_avx2(row, dx) };
+    }
+    let _ = avx;
+    crate::numeric::dot(row, dx)
+}
+
+/// Full metric, any size: `Σ_n (Σ_{i≥n} M_ni dx_i)²` (the inner sums by [`crate::numeric::dot`]),
+/// checking the bound after each row; with `avx` (see [`quad`]) by `fast::dot::dot_avx2`.
+#[inline(always)]
+fn quad_full(avx: bool, c: &[f64], m: &[f64], x: &[f64], dx: &mut [f64], bound: f64) -> f64 {
     let nk = x.len();
     let (c, m, dx) = (&c[..nk], &m[..nk * nk], &mut dx[..nk]);
     for i in 0..nk {
@@ -105,7 +120,8 @@ fn quad_full(c: &[f64], m: &[f64], x: &[f64], dx: &mut [f64], bound: f64) -> f64
     }
     let mut q = 0.0;
     for n in 0..nk {
-        let v = crate::numeric::dot(&m[n * nk + n..(n + 1) * nk], &dx[n..]);
+        let (row, dxn) = (&m[n * nk + n..(n + 1) * nk], &dx[n..]);
+        let v = row_dot(avx, row, dxn);
         q += v * v;
         if q >= bound {
             return q;

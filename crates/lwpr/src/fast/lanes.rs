@@ -1,6 +1,10 @@
 //! Four `f64` lanes (`[f64; 4]`) and their operations, for the full-metric step above 4
 //! dimensions (`fast/wide.rs`): written lane by lane, so that the compiler maps them onto AVX2
-//! registers, with fused multiply-adds (`f64::mul_add`, correctly rounded on every CPU).
+//! registers, with fused multiply-adds (`f64::mul_add`, correctly rounded on every CPU). With
+//! `AVX` some take AVX2 intrinsics (`lanes_avx.rs`) for the same values.
+
+#[cfg(target_arch = "x86_64")]
+use crate::fast::lanes_avx;
 
 /// Four lanes.
 pub(crate) type V = [f64; 4];
@@ -36,10 +40,29 @@ pub(crate) fn fma(a: V, b: V, c: V) -> V {
     ]
 }
 
-/// `(v₀ + v₁) + (v₂ + v₃)`.
+/// `(v₀ + v₁) + (v₂ + v₃)`; with `AVX` (set only where the CPU has AVX2) unpacked in
+/// registers (the same value; the plain form makes the compiler keep the lanes of the sums
+/// that feed it as two shuffled halves).
 #[inline(always)]
-pub(crate) fn hsum(v: V) -> f64 {
+pub(crate) fn hsum<const AVX: bool>(v: V) -> f64 {
+    #[cfg(target_arch = "x86_64")]
+    if AVX {
+        // SAFETY: `AVX` is set only where the CPU has AVX2.
+        return unsafe { lanes_avx::hsum(v) };
+    }
     (v[0] + v[1]) + (v[2] + v[3])
+}
+
+/// `max(0, max_i |v_i|)` as `numeric::max_abs(0.0, v)` (NaNs ignored; the same value); with
+/// `AVX` four lanes in one register.
+#[inline(always)]
+pub(crate) fn max_abs0<const AVX: bool>(v: &[f64]) -> f64 {
+    #[cfg(target_arch = "x86_64")]
+    if AVX {
+        // SAFETY: `AVX` is set only where the CPU has AVX2.
+        return unsafe { lanes_avx::max_abs0(v) };
+    }
+    crate::numeric::max_abs(0.0, v)
 }
 
 /// `e^x` lane-wise for `x ∈ [−10, 10]` (the clipped `b = ln α`): the scheme of
@@ -67,21 +90,38 @@ pub(crate) fn exp4(x: V) -> V {
     map2(p, scale, |p, s| (1.0 + p) * s)
 }
 
-/// Four elements from `s[i..]`, the lanes from `rem` on zero.
+/// Four elements from `s[i..]`, the lanes from `rem` on zero; with `AVX` (set only where the
+/// CPU has AVX2, checked at run time) a partial vector is one masked load instead of a branch
+/// per lane (the same values).
 #[inline(always)]
-pub(crate) fn load(s: &[f64], i: usize, rem: usize) -> V {
+pub(crate) fn load<const AVX: bool>(s: &[f64], i: usize, rem: usize) -> V {
     if rem >= 4 {
         s[i..i + 4].try_into().unwrap()
+    } else if cfg!(target_arch = "x86_64") && AVX {
+        let s = &s[i..i + rem];
+        // SAFETY: `AVX` is set only where the CPU has AVX2; the mask enables the `rem` lanes
+        // of `s` (masked lanes are not accessed).
+        #[cfg(target_arch = "x86_64")]
+        return unsafe { lanes_avx::load(s.as_ptr(), rem) };
+        #[cfg(not(target_arch = "x86_64"))]
+        unreachable!()
     } else {
         std::array::from_fn(|l| if l < rem { s[i + l] } else { 0.0 })
     }
 }
 
-/// Stores the first `min(rem, 4)` lanes of `v` at `s[i..]`.
+/// Stores the first `min(rem, 4)` lanes of `v` at `s[i..]` (with `AVX`: as [`load`]).
 #[inline(always)]
-pub(crate) fn store(s: &mut [f64], i: usize, rem: usize, v: V) {
+pub(crate) fn store<const AVX: bool>(s: &mut [f64], i: usize, rem: usize, v: V) {
     if rem >= 4 {
         s[i..i + 4].copy_from_slice(&v);
+    } else if cfg!(target_arch = "x86_64") && AVX {
+        let s = &mut s[i..i + rem];
+        // SAFETY: as in `load`.
+        #[cfg(target_arch = "x86_64")]
+        unsafe {
+            lanes_avx::store(s.as_mut_ptr(), rem, v)
+        };
     } else {
         // Lane by lane (a loop of one store would become a call of `memcpy`).
         if rem > 0 {

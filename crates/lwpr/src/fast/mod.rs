@@ -20,13 +20,18 @@
 //! | RF updates in groups of 2–3 | 2-D kernel and regression, full metric, one output per RF | [`group`] |
 //! | fused full-metric step | full metric, up to 4 dimensions | [`fused`] |
 //! | four-lane full-metric step | full metric, 5 dimensions or more | [`wide`] |
+//! | its partial vectors, `max \|M\|` and row sums in AVX2 registers | the four-lane step on AVX2 | [`lanes_avx`] |
+//! | distance rows in one AVX2 register | full metric, 5 dimensions or more: activation pass, predictions, activation queries | [`dot`] |
 //!
 //! Tests run single specialisations off through the flags `F` of [`Fast`] (production runs
 //! [`ALL`]) and compare with the reference.
 
+pub(crate) mod dot;
 pub(crate) mod fused;
 pub(crate) mod group;
 pub(crate) mod lanes;
+#[cfg(target_arch = "x86_64")]
+pub(crate) mod lanes_avx;
 pub(crate) mod plane_metric;
 pub(crate) mod plane_pls;
 pub(crate) mod plane_quad;
@@ -114,11 +119,12 @@ pub(crate) fn groups_apply(nk: usize, nr: usize, p: &Params) -> bool {
 impl<const K: usize, const R: usize, const AVX: bool, const F: u8> Stages for Fast<K, R, AVX, F> {
     const NK: usize = K;
     const NR: usize = R;
+    const AVX: bool = AVX;
 
     #[inline(always)]
     fn activations(p: &Params, sub: &SubModel, ws: &mut Scratch) -> Top2 {
         if !(K == 2 && !p.cfg.diag_only && F & PLANE != 0) {
-            return pass::<K>(p, sub, ws);
+            return pass::<K, AVX>(p, sub, ws);
         }
         let qb = ws.qb_update;
         let mut top = Top2::new();
@@ -382,7 +388,7 @@ pub(crate) fn activations(
         unsafe { activations_avx2(p, s, ws, x, cutoff, out) };
         return;
     }
-    activations_dims(p, s, ws, x, cutoff, out);
+    activations_dims::<false>(p, s, ws, x, cutoff, out);
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -395,12 +401,13 @@ unsafe fn activations_avx2(
     cutoff: f64,
     out: &mut Vec<Activation>,
 ) {
-    activations_dims(p, s, ws, x, cutoff, out)
+    activations_dims::<true>(p, s, ws, x, cutoff, out)
 }
 
-/// The kernel dimensions of [`QUERY_KERNEL_DIMS`] as constants.
+/// The kernel dimensions of [`QUERY_KERNEL_DIMS`] as constants (`AVX`: only after the CPU
+/// check).
 #[inline(always)]
-fn activations_dims(
+fn activations_dims<const AVX: bool>(
     p: &Params,
     s: &SubModel,
     ws: &mut Scratch,
@@ -411,9 +418,9 @@ fn activations_dims(
     const Q0: usize = QUERY_KERNEL_DIMS[0];
     const Q1: usize = QUERY_KERNEL_DIMS[1];
     match p.nk() {
-        Q0 => activations_core::<Q0>(p, s, ws, x, cutoff, out),
-        Q1 => activations_core::<Q1>(p, s, ws, x, cutoff, out),
-        _ => activations_core::<0>(p, s, ws, x, cutoff, out),
+        Q0 => activations_core::<Q0, AVX>(p, s, ws, x, cutoff, out),
+        Q1 => activations_core::<Q1, AVX>(p, s, ws, x, cutoff, out),
+        _ => activations_core::<0, AVX>(p, s, ws, x, cutoff, out),
     }
 }
 
@@ -422,7 +429,7 @@ fn activations_dims(
 /// know that the slices do not overlap (taking the struct cost 3.7 % more instructions on the
 /// 21-D test).
 macro_rules! wide_copy {
-    ($(#[$attr:meta])* $name:ident $(, $unsafe:ident)?) => {
+    ($(#[$attr:meta])* $name:ident, $avx:expr $(, $unsafe:ident)?) => {
         $(#[$attr])*
         #[allow(clippy::too_many_arguments)]
         #[inline(never)]
@@ -439,7 +446,7 @@ macro_rules! wide_copy {
             ddwdqdq: f64,
             ws: &mut MetricScratch,
         ) {
-            wide::wide_step::<NK>(nk, p, m, d, alpha, b, hm, acc, dwdq, ddwdqdq, ws)
+            wide::wide_step::<NK, $avx>(nk, p, m, d, alpha, b, hm, acc, dwdq, ddwdqdq, ws)
         }
     };
 }
@@ -448,11 +455,11 @@ wide_copy!(
     /// `wide_step` with AVX2 and FMA (same results, see `wide.rs`).
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
-    wide_avx2, unsafe
+    wide_avx2, true, unsafe
 );
 wide_copy!(
     /// `wide_step` for the baseline target (FMA in software).
-    wide_base
+    wide_base, false
 );
 
 /// Whether the CPU supports AVX2 and FMA (cached by the standard library after the first

@@ -21,8 +21,7 @@
 //! than on AVX2+FMA (65 µs against 2.6 µs at 21-D, measured by forcing the baseline copy):
 //! the price of the same bits on every CPU.
 
-use crate::fast::lanes::{exp4, fma, hsum, load, map2, mul, splat, store, sub, V};
-use crate::numeric::max_abs;
+use crate::fast::lanes::{exp4, fma, hsum, load, map2, max_abs0, mul, splat, store, sub, V};
 use crate::params::Params;
 use crate::update::metric::{MetricAcc, MetricScratch};
 
@@ -87,14 +86,15 @@ pub(crate) fn wide_len(nk: usize) -> usize {
 
 /// The full-metric step (d) of one RF for `nk > 4`, with the arguments of `full_step`
 /// (`fast/fused.rs`, there: what each is); `NK > 0` fixes `nk` at compile
-/// time. Uses `ws.dx`, `ws.mdx`, `ws.row` and `ws.wide`.
+/// time; `AVX` (set only where the CPU has AVX2 and FMA) takes masked loads and stores for
+/// the partial vectors (the same results). Uses `ws.dx`, `ws.mdx`, `ws.row` and `ws.wide`.
 ///
 /// `M·D` and `D = MᵀM` combine rows of `D` and `M` read in place four columns at a time (the
 /// last row from a padded copy); the element-wise step runs over each row of the upper
 /// triangle in place, four columns at a time from the diagonal, the last vector partial.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-pub(crate) fn wide_step<const NK: usize>(
+pub(crate) fn wide_step<const NK: usize, const AVX: bool>(
     nk: usize,
     p: &Params,
     m: &mut [f64],
@@ -133,7 +133,7 @@ pub(crate) fn wide_step<const NK: usize>(
     d_last[..nk].copy_from_slice(&d[nn - nk..]);
 
     // max |M| (exact in any order; the lower triangle is zero).
-    let max_m = max_abs(0.0, m);
+    let max_m = max_abs0::<AVX>(m);
 
     // Row n of M·D (the penalty gradient, from the unchanged M and D) into the first block,
     // in column blocks of up to 8 vectors held in registers.
@@ -162,72 +162,83 @@ pub(crate) fn wide_step<const NK: usize>(
     let (mdx, ss) = (&mut ws.mdx[..nk], &mut ws.row[..nk]);
     for n in 0..nk {
         let (mut a, mut sq) = (splat(0.0), splat(0.0));
+        let mr = &m[n * nk..(n + 1) * nk];
         for c in (n..nk).step_by(4) {
-            let mv = load(m, n * nk + c, nk - c);
-            a = fma(mv, load(dxp, c, 4), a);
+            let mv = load::<AVX>(mr, c, nk - c);
+            a = fma(mv, load::<AVX>(dxp, c, 4), a);
             sq = fma(mv, mv, sq);
         }
-        (mdx[n], ss[n]) = (hsum(a), hsum(sq));
+        (mdx[n], ss[n]) = (hsum::<AVX>(a), hsum::<AVX>(sq));
     }
     // (2) The gradient G (over M·D) and, with meta, the curvature G₂ (second block) and the
     // new b = ln α.
     for n in 0..nk {
         let (mdx, ss) = (splat(mdx[n]), splat(ss[n]));
+        // Row n of M, h, b (from column 0) and of both scratch blocks: per-row slices let
+        // the compiler drop the bounds checks of the vectors below.
+        let r = n * nk..(n + 1) * nk;
+        let (mr, hr, br) = (&m[r.clone()], &hm[r.clone()], &mut b[r]);
+        let (gr, ggr) = (&mut gb[n * s..(n + 1) * s], &mut ggb[n * s..(n + 1) * s]);
         for c in (n..nk).step_by(4) {
-            let (k, rem, kg) = (n * nk + c, nk - c, n * s + c);
-            let x = load(dxp, c, 4);
+            let rem = nk - c;
+            let x = load::<AVX>(dxp, c, 4);
             let dqdm = mul(mul(splat(2.0), x), mdx);
             let dwdm = mul(dqdm, splat(dwdq));
-            let dj2 = mul(load(gb, kg, 4), splat(4.0 * pen));
+            let dj2 = mul(load::<AVX>(gr, c, 4), splat(4.0 * pen));
             let g = fma(splat(ca), dj2, mul(splat(cb), dwdm));
-            store(gb, kg, 4, g);
+            store::<AVX>(gr, c, 4, g);
             if meta {
-                let mv = load(m, k, rem);
+                let mv = load::<AVX>(mr, c, rem);
                 let ddw = fma(
                     mul(splat(ddwdqdq), dqdm),
                     dqdm,
                     mul(mul(splat(2.0 * dwdq), x), x),
                 );
-                let dd_ss = map2(load(ddp, c, 4), ss, |a, b| a + b);
+                let dd_ss = map2(load::<AVX>(ddp, c, 4), ss, |a, b| a + b);
                 let ddj2 = mul(splat(4.0 * pen), fma(mv, mv, dd_ss));
                 let gg = fma(
                     mul(splat(cc), dwdm),
                     dwdm,
                     fma(splat(ca), ddj2, mul(splat(cb), ddw)),
                 );
-                store(ggb, kg, 4, gg);
-                let aux = mul(mul(splat(rate), g), load(hm, k, rem)).map(|v| v.clamp(-0.1, 0.1));
-                let bn = sub(load(b, k, rem), aux).map(|v| v.clamp(-10.0, 10.0));
-                store(b, k, rem, bn);
+                store::<AVX>(ggr, c, 4, gg);
+                let aux =
+                    mul(mul(splat(rate), g), load::<AVX>(hr, c, rem)).map(|v| v.clamp(-0.1, 0.1));
+                let bn = sub(load::<AVX>(br, c, rem), aux).map(|v| v.clamp(-10.0, 10.0));
+                store::<AVX>(br, c, rem, bn);
             }
         }
     }
     // (3) With meta, α = e^b and the IDBD memory h ← h·max(0, 1 − α G₂) − α G; then the step
     // on M, halving α instead where it would exceed a tenth of max |M|.
     for n in 0..nk {
+        let r = n * nk..(n + 1) * nk;
+        let (mr, ar, br, hr) = (
+            &mut m[r.clone()],
+            &mut alpha[r.clone()],
+            &b[r.clone()],
+            &mut hm[r],
+        );
+        let (gr, ggr) = (&gb[n * s..(n + 1) * s], &ggb[n * s..(n + 1) * s]);
         for c in (n..nk).step_by(4) {
-            let (k, rem, kg) = (n * nk + c, nk - c, n * s + c);
-            let (g, mv) = (load(gb, kg, 4), load(m, k, rem));
+            let rem = nk - c;
+            let (g, mv) = (load::<AVX>(gr, c, 4), load::<AVX>(mr, c, rem));
             let a = if meta {
-                let an = exp4(load(b, k, rem));
-                let keep =
-                    fma(sub(splat(0.0), an), load(ggb, kg, 4), splat(1.0)).map(|v| v.max(0.0));
-                let hn = fma(load(hm, k, rem), keep, sub(splat(0.0), mul(an, g)));
-                store(hm, k, rem, hn);
+                let an = exp4(load::<AVX>(br, c, rem));
+                let keep = fma(sub(splat(0.0), an), load::<AVX>(ggr, c, 4), splat(1.0))
+                    .map(|v| v.max(0.0));
+                let hn = fma(load::<AVX>(hr, c, rem), keep, sub(splat(0.0), mul(an, g)));
+                store::<AVX>(hr, c, rem, hn);
                 an
             } else {
-                load(alpha, k, rem)
+                load::<AVX>(ar, c, rem)
             };
             let dm = mul(a, g);
-            store(
-                alpha,
-                k,
-                rem,
-                map2(dm, a, |dm, a| if dm > thr { a * 0.5 } else { a }),
-            );
-            store(
-                m,
-                k,
+            let an = map2(dm, a, |dm, a| if dm > thr { a * 0.5 } else { a });
+            store::<AVX>(ar, c, rem, an);
+            store::<AVX>(
+                mr,
+                c,
                 rem,
                 map2(dm, mv, |dm, m| if dm > thr { m } else { m - dm }),
             );
@@ -241,7 +252,7 @@ pub(crate) fn wide_step<const NK: usize>(
     for i in 0..nk {
         for c0 in (0..q).step_by(8) {
             let c1 = (c0 + 8).min(q);
-            let terms = (0..=i).map(|k| (m[k * nk + i], row_vectors(m, nk, q, k, m_last)));
+            let terms = (0..i + 1).map(|k| (m[k * nk + i], row_vectors(m, nk, q, k, m_last)));
             let a = combine(terms, c0, c1);
             let (j0, j1) = (4 * c0, (4 * c1).min(nk));
             d[i * nk + j0..i * nk + j1].copy_from_slice(&a.as_flattened()[..j1 - j0]);

@@ -100,7 +100,7 @@ pub(crate) fn sub_sums<S: Stages>(
         if !rf.trustworthy {
             continue;
         }
-        let q = quad(diag, c, md, &ws.xk[..nk], &mut ws.met.dx, qb);
+        let q = quad(S::AVX, diag, c, md, &ws.xk[..nk], &mut ws.met.dx, qb);
         if q >= qb {
             continue;
         }

@@ -88,7 +88,7 @@ fn sub_everywhere(p: &Params, sub: &mut SubModel, ws: &mut Scratch, o0: usize) -
     let rf_chunks = centers.chunks_exact(nk).zip(kern.chunks_exact(ml));
     for (rf, (c, md)) in rfs.iter().zip(rf_chunks) {
         if rf.trustworthy {
-            let q = quad(diag, c, md, &ws.xk[..nk], &mut ws.met.dx, bound);
+            let q = quad(false, diag, c, md, &ws.xk[..nk], &mut ws.met.dx, bound);
             if q < bound {
                 bound = q;
                 top = top.max(ln_w(p, q));
@@ -113,7 +113,7 @@ fn sub_everywhere(p: &Params, sub: &mut SubModel, ws: &mut Scratch, o0: usize) -
         if !rf.trustworthy {
             continue;
         }
-        let q = quad(diag, c, md, &ws.xk[..nk], &mut ws.met.dx, q_far);
+        let q = quad(false, diag, c, md, &ws.xk[..nk], &mut ws.met.dx, q_far);
         let rel = ln_w(p, q) - top;
         if rel <= ln_eps {
             continue;

@@ -7,9 +7,10 @@ use crate::rf::{Activation, RfId, SubModel};
 use crate::scratch::Scratch;
 
 /// Writes into `out` (cleared first) the activations `w > cutoff` of the RFs of `s` at `x`;
-/// `NK > 0` fixes the kernel dimension at compile time (0: taken from `p`).
+/// `NK > 0` fixes the kernel dimension at compile time (0: taken from `p`); `AVX` is set only
+/// after the run-time check of the CPU (`distance::quad`).
 #[inline(always)]
-pub(crate) fn activations_core<const NK: usize>(
+pub(crate) fn activations_core<const NK: usize, const AVX: bool>(
     p: &Params,
     s: &SubModel,
     ws: &mut Scratch,
@@ -25,7 +26,7 @@ pub(crate) fn activations_core<const NK: usize>(
     out.clear();
     let rf_chunks = s.centers.chunks_exact(nk).zip(kern.chunks_exact(ml));
     for (rf, (c, md)) in s.rfs.iter().zip(rf_chunks) {
-        let q = quad(diag, c, md, &ws.xk[..nk], &mut ws.met.dx, qb);
+        let q = quad(AVX, diag, c, md, &ws.xk[..nk], &mut ws.met.dx, qb);
         if q < qb {
             let w = p.kernel(q).0;
             if w > cutoff {

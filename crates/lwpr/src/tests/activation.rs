@@ -24,7 +24,7 @@ unsafe fn visits_avx2(centers: &[f64], ms: &[f64], x: &[f64]) -> (Vec<(usize, u6
 /// A value drawn from a mix of scales, with zeros of both signs. (A sign of zero cannot show
 /// in `q`, every sum ends squared; the test guards the lanes' order and elements, with a
 /// random lower element of `M` that must be ignored, and would catch a fused multiply-add.)
-fn draw(rng: &mut ChaCha8Rng) -> f64 {
+pub(crate) fn draw(rng: &mut ChaCha8Rng) -> f64 {
     match rng.random_range(0..6) {
         0 => 0.0,
         1 => -0.0,
@@ -49,7 +49,10 @@ fn four_at_a_time_gives_the_bits_of_one_at_a_time() {
         let want: Vec<(usize, u64)> = (0..n)
             .map(|i| {
                 let (c, m) = (&centers[2 * i..2 * i + 2], &ms[4 * i..4 * i + 4]);
-                (i, quad(false, c, m, &x, &mut dx, f64::INFINITY).to_bits())
+                (
+                    i,
+                    quad(false, false, c, m, &x, &mut dx, f64::INFINITY).to_bits(),
+                )
             })
             .collect();
         assert_eq!(

@@ -4,6 +4,7 @@
 mod activation;
 mod const_r;
 mod derivatives;
+mod dot;
 mod fused;
 mod group;
 mod guard;

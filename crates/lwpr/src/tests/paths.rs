@@ -46,6 +46,7 @@ pub(crate) struct Counting<S>(PhantomData<S>);
 impl<S: Stages> Stages for Counting<S> {
     const NK: usize = S::NK;
     const NR: usize = S::NR;
+    const AVX: bool = S::AVX;
 
     fn activations(
         p: &Params,

@@ -26,7 +26,9 @@ fn both(nk: usize, meta: bool, seed: u64) -> ([Vec<f64>; 5], [Vec<f64>; 5]) {
     // The step must not depend on what its scratch held before.
     ws2.wide.fill(f64::NAN);
     let [m2, d2, a2, b2, h2] = &mut w;
-    crate::fast::wide::wide_step::<0>(nk, p, m2, d2, a2, b2, h2, acc, dwdq, ddwdqdq, &mut ws2);
+    crate::fast::wide::wide_step::<0, false>(
+        nk, p, m2, d2, a2, b2, h2, acc, dwdq, ddwdqdq, &mut ws2,
+    );
     (r, w)
 }
 
@@ -119,4 +121,38 @@ fn exp4_is_accurate() {
     }
     assert_eq!(crate::fast::lanes::exp4([0.0; 4]), [1.0; 4]);
     assert!(worst < 3e-16, "relative error {worst:e}");
+}
+
+#[cfg(target_arch = "x86_64")]
+#[test]
+fn lane_sums_and_maxima_on_avx2_give_the_same_bits() {
+    use crate::fast::lanes::{hsum, max_abs0};
+    if !crate::fast::has_avx2() {
+        return;
+    }
+    let specials = [
+        0.0,
+        -0.0,
+        1.5,
+        -2.5,
+        f64::NAN,
+        f64::INFINITY,
+        -1e-300,
+        3e300,
+    ];
+    let mut v = Vec::new();
+    for i in 0..40 {
+        // SAFETY (the calls below): the CPU has AVX2 (checked above).
+        let (a, b) = (max_abs0::<true>(&v), max_abs0::<false>(&v));
+        assert_eq!(a.to_bits(), b.to_bits(), "max over {i} values");
+        v.push(specials[(i * 5) % specials.len()] * (1.0 + i as f64));
+    }
+    for i in 0..200 {
+        let l = std::array::from_fn(|j| specials[(i * 3 + j * 7 + i / 8) % 6] + (i * j) as f64);
+        assert_eq!(
+            hsum::<true>(l).to_bits(),
+            hsum::<false>(l).to_bits(),
+            "{l:?}"
+        );
+    }
 }

@@ -9,9 +9,14 @@ use crate::scratch::Scratch;
 
 /// The activation pass: queues in `ws.active` every RF whose activation exceeds the update
 /// threshold, with the kernel's derivatives, and returns the two nearest RFs. `NK > 0` fixes
-/// the kernel dimension at compile time (0: taken from `p`).
+/// the kernel dimension at compile time (0: taken from `p`); `AVX` is set only after the
+/// run-time check of the CPU (`distance::quad`).
 #[inline(always)]
-pub(crate) fn pass<const NK: usize>(p: &Params, sub: &SubModel, ws: &mut Scratch) -> Top2 {
+pub(crate) fn pass<const NK: usize, const AVX: bool>(
+    p: &Params,
+    sub: &SubModel,
+    ws: &mut Scratch,
+) -> Top2 {
     let nk = if NK > 0 { NK } else { p.nk() };
     let (ml, diag, qb) = (p.mlen(), p.cfg.diag_only, ws.qb_update);
     let mut top = Top2::new();
@@ -21,7 +26,15 @@ pub(crate) fn pass<const NK: usize>(p: &Params, sub: &SubModel, ws: &mut Scratch
     let rf_chunks = sub.centers.chunks_exact(nk).zip(kern.chunks_exact(ml));
     for (i, (c, md)) in rf_chunks.enumerate() {
         // An RF at q ≥ max(qb, q2) is neither updated nor among the two most active.
-        let q = quad(diag, c, md, &ws.xk[..nk], &mut ws.met.dx, qb.max(top.q2));
+        let q = quad(
+            AVX,
+            diag,
+            c,
+            md,
+            &ws.xk[..nk],
+            &mut ws.met.dx,
+            qb.max(top.q2),
+        );
         top.visit(p, qb, i, q, &mut ws.active);
     }
     top

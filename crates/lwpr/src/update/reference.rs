@@ -21,10 +21,11 @@ pub(crate) struct Reference;
 impl Stages for Reference {
     const NK: usize = 0;
     const NR: usize = 0;
+    const AVX: bool = false;
 
     #[inline(always)]
     fn activations(p: &Params, sub: &SubModel, ws: &mut Scratch) -> Top2 {
-        pass::<0>(p, sub, ws)
+        pass::<0, false>(p, sub, ws)
     }
 
     #[inline(always)]

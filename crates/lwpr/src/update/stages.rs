@@ -20,6 +20,8 @@ pub(crate) trait Stages {
     const NK: usize;
     /// The regression dimension as a compile-time constant, or 0 (taken from the model).
     const NR: usize;
+    /// Whether the code runs on AVX2 (set only after the run-time check of the CPU).
+    const AVX: bool;
 
     /// Step 2: queues the RFs to update in `ws.active`, with the kernel's derivatives, and
     /// returns the two nearest (`update/activation.rs`).
