@@ -59,6 +59,10 @@ pub struct AdaptationConfig {
     /// (`enabled`): no field is added, moved or reshaped by the changed robot's data. Default
     /// false.
     pub freeze_partition: bool,
+    /// Least strength at which the load correction keeps learning once a change has been
+    /// detected (in [0, 1]). Default 0: it learns at the re-adaptation's strength, and stops
+    /// when the local dynamics fit again.
+    pub load_floor: f64,
 }
 
 impl Default for AdaptationConfig {
@@ -78,6 +82,7 @@ impl Default for AdaptationConfig {
             load_correction: true,
             load_time_constant: 1.0,
             freeze_partition: false,
+            load_floor: 0.0,
         }
     }
 }
@@ -123,12 +128,38 @@ impl AdaptationConfig {
                 "trust_scale",
                 self.trust_scale >= 1.0 && self.trust_scale.is_finite(),
             ),
+            ("load_floor", (0.0..=1.0).contains(&self.load_floor)),
         ];
         match checks.iter().find(|(_, ok)| !ok) {
             Some((what, _)) => Err(LearnError::InvalidConfig(format!(
                 "adaptation.{what} is out of range: {self:?}"
             ))),
             None => Ok(()),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::AdaptationConfig;
+
+    /// `load_floor` is a strength: 0 and 1 pass, outside [0, 1] and NaN are refused by name.
+    #[test]
+    fn the_load_floor_is_checked() {
+        for ok in [0.0, 0.3, 1.0] {
+            let c = AdaptationConfig {
+                load_floor: ok,
+                ..AdaptationConfig::default()
+            };
+            assert!(c.validate().is_ok(), "{ok}");
+        }
+        for bad in [-0.1, 1.5, f64::NAN] {
+            let c = AdaptationConfig {
+                load_floor: bad,
+                ..AdaptationConfig::default()
+            };
+            let e = c.validate().unwrap_err().to_string();
+            assert!(e.contains("load_floor"), "{e}");
         }
     }
 }

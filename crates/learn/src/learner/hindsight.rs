@@ -232,7 +232,13 @@ impl Step<'_> {
     fn learn_load(&mut self, cur: &Measurement) -> Result<()> {
         let ad = &self.cfg.adaptation;
         let on = ad.enabled && ad.load_correction && self.cfg.experimental.residual;
-        if !on || !(self.adapt.strength > 0.0) {
+        let detected = self.adapt.strength > 0.0 || self.adapt.adapting_steps > 0;
+        let strength = if detected {
+            self.adapt.strength.max(ad.load_floor)
+        } else {
+            0.0
+        };
+        if !on || !(strength > 0.0) {
             return Ok(());
         }
         let ws = &mut *self.ws;
@@ -253,7 +259,7 @@ impl Step<'_> {
         for (i, p) in ws.pi.iter_mut().enumerate() {
             *p = cur.u[i] - (ws.u0[i] - ws.load_c[i]) - *p;
         }
-        let gain = self.adapt.strength * self.dt / ad.load_time_constant;
+        let gain = strength * self.dt / ad.load_time_constant;
         self.load.learn(&ws.acts, &ws.load_c, &ws.pi, gain);
         Ok(())
     }
