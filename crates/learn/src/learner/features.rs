@@ -83,6 +83,48 @@ impl Features {
         }
     }
 
+    /// The shared parts of the difference form of `φ_d` (`DynamicsRegression::Difference`):
+    /// `Δu/Δt`, `Δq̇/Δt` and 0 for the constant, from the previous transition's `u0, q̇0`.
+    pub fn dynamics_common_difference(
+        &self,
+        phi_d: &mut [f64],
+        (u, u0): (&[f64], &[f64]),
+        (qd, qd0): (&[f64], &[f64]),
+        inv_dt: f64,
+    ) {
+        let n = self.n;
+        for i in 0..n {
+            phi_d[i] = (u[i] - u0[i]) * inv_dt;
+            phi_d[n + i] = (qd[i] - qd0[i]) * inv_dt;
+        }
+        phi_d[3 * n] = 0.0;
+    }
+
+    /// The field's parts of the difference form of `φ_d`: `Δq/Δt` and the change of the
+    /// bilinear terms `u_j (q_k − c_k)` over `Δt`, from the previous transition's `q0, u0`.
+    pub fn dynamics_local_difference(
+        &self,
+        phi_d: &mut [f64],
+        (q, q0): (&[f64], &[f64]),
+        (u, u0): (&[f64], &[f64]),
+        center: &[f64],
+        inv_dt: f64,
+    ) {
+        let n = self.n;
+        for i in 0..n {
+            phi_d[2 * n + i] = (q[i] - q0[i]) * inv_dt;
+        }
+        if self.bilinear {
+            for j in 0..n {
+                for k in 0..n {
+                    let now = u[j] * (q[k] - center[k]);
+                    let before = u0[j] * (q0[k] - center[k]);
+                    phi_d[3 * n + 1 + j * n + k] = (now - before) * inv_dt;
+                }
+            }
+        }
+    }
+
     /// Adds `w · Â_i(q)` (m×n, row-major into `a`) of one field's dynamics coefficients `theta`
     /// (`φ_d`-rows × m): `Â_i(q) = Θ_u + Σ_k (q_k − c_k) Θ_{u_j q_k}`.
     pub fn add_gain(&self, theta: &DMatrix<f64>, q: &[f64], center: &[f64], w: f64, a: &mut [f64]) {
