@@ -27,7 +27,7 @@ use serde::{Deserialize, Serialize};
 /// First bytes of a saved learned controller.
 pub const MAGIC: &[u8; 8] = b"OSRLLC\0\0";
 /// Version of the saved format; files of another version are refused.
-pub const FORMAT_VERSION: u32 = 8;
+pub const FORMAT_VERSION: u32 = 9;
 
 /// Everything a learner is, as stored (the config as JSON text, so its untagged enums survive).
 #[derive(Serialize, Deserialize)]

@@ -212,6 +212,35 @@ mod tests {
         assert_eq!(&d[10..], &[1.0, 0.0, -1.0, 2.0, 0.0, -2.0, 3.0, 0.0, -3.0]);
     }
 
+    /// The difference form of `φ_d` is the change of the levels over `Δt`, with 0 for the
+    /// constant (`DynamicsRegression::Difference`).
+    #[test]
+    fn the_difference_form_is_the_change_of_the_levels() {
+        let f = Features::new(3, 2, true, true);
+        let c = [0.1, -0.2, 0.3];
+        let (q0, q1) = ([0.2, 0.4, -0.1], [0.25, 0.35, -0.05]);
+        let (qd0, qd1) = ([1.0, -2.0, 0.5], [1.5, -1.0, 0.0]);
+        let (u0, u1) = ([3.0, -1.0, 2.0], [2.0, 0.5, 2.5]);
+        let level = |q: &[f64], qd: &[f64], u: &[f64]| {
+            let mut d = vec![f64::NAN; f.dynamics_len()];
+            f.dynamics_common(&mut d, u, qd);
+            f.dynamics_local(&mut d, q, u, &c);
+            d
+        };
+        let (a, b) = (level(&q0, &qd0, &u0), level(&q1, &qd1, &u1));
+        let mut d = vec![f64::NAN; f.dynamics_len()];
+        f.dynamics_common_difference(&mut d, (&u1, &u0), (&qd1, &qd0), 500.0);
+        f.dynamics_local_difference(&mut d, (&q1, &q0), (&u1, &u0), &c, 500.0);
+        for k in 0..d.len() {
+            let want = if k == 9 { 0.0 } else { (b[k] - a[k]) * 500.0 };
+            assert!(
+                (d[k] - want).abs() <= 1e-9 * want.abs().max(1.0),
+                "{k}: {}",
+                d[k]
+            );
+        }
+    }
+
     /// The stack path of `add_gain` gives the bits of the entry-by-entry one.
     #[test]
     fn the_gain_on_the_stack_has_the_bits_of_the_entry_by_entry_sums() {
