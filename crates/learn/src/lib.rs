@@ -31,8 +31,9 @@ pub mod train;
 mod variant;
 
 pub use config::{
-    AdaptationConfig, ControllerConfig, CostKind, DynamicsConfig, ExplorationConfig, GravityConfig,
-    GuardConfig, LearnerConfig, NoiseProcess, NominalConfig, PartitionConfig,
+    AdaptationConfig, ControllerConfig, CostKind, DynamicsConfig, DynamicsRegression,
+    ExplorationConfig, GravityConfig, GuardConfig, LearnerConfig, NoiseProcess, NominalConfig,
+    PartitionConfig,
 };
 pub use controller::{LearnedController, SourceCounts};
 pub use error::{LearnError, Result};

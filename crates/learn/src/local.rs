@@ -53,8 +53,9 @@ pub(crate) struct LocalSpec<'a> {
     pub m: usize,
     /// Features of the local dynamics regression.
     pub dynamics_features: usize,
-    /// Forgetting of the local dynamics regression.
+    /// Forgetting and trust region (m/s², 0 = none) of the local dynamics regression.
     pub dynamics_forgetting: f64,
+    pub dynamics_trust_region: f64,
     pub rwr: &'a RwrConfig,
     /// Effective sample size at which a controller counts as trained.
     pub trained_ess: f64,
@@ -294,7 +295,7 @@ impl LocalControllers {
 }
 
 /// The local dynamics regression's settings: a plain weighted least squares (fixed `τ`, no `σ`
-/// update, no floors) with its own forgetting.
+/// update, no floors) with its own forgetting and trust region (not the controllers').
 fn dynamics_config(cfg: RwrConfig, spec: &LocalSpec) -> RwrConfig {
     RwrConfig {
         adapt_tau: false,
@@ -305,6 +306,7 @@ fn dynamics_config(cfg: RwrConfig, spec: &LocalSpec) -> RwrConfig {
         tau_max: None,
         ridge_to_previous: false,
         forgetting: spec.dynamics_forgetting,
+        trust_region: (spec.dynamics_trust_region > 0.0).then_some(spec.dynamics_trust_region),
         ..cfg
     }
 }

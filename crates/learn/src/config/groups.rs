@@ -156,6 +156,37 @@ pub struct DynamicsConfig {
     /// Re-solve at every this many M-steps of the field's controller (≥ 1). Default 4: a solve
     /// factors a 71×71 system on sarcos7.
     pub solve_every: usize,
+    /// What the regression fits: the levels `ẍ` on `φ_d`, or the changes between consecutive
+    /// transitions (see [`DynamicsRegression`]). Default `difference`: `Â`'s error on the path
+    /// is about 10× smaller than with the levels, on both robots (`docs/decisions.md`, D23).
+    pub regression: DynamicsRegression,
+    /// Trust region of a solve (weighted RMS change of the fitted target over the field's
+    /// samples: m/s² for `level`, m/s³ for `difference`; 0 = none): a larger change is shrunk
+    /// towards the previous solution. Default 0 (none): in the difference form the target is
+    /// `1/Δt` larger, and the levels' 0.05 m/s² (inherited from the controllers) held `Â` near
+    /// its start for minutes (D23).
+    pub trust_region: f64,
+    /// A sample's weight in a field is its activation raised to this power (≥ 1): above 1 the
+    /// fit is more local than the field. Default 1.
+    pub weight_power: f64,
+}
+
+/// What the local dynamics regression of a field fits (`docs/decisions.md`, D23).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DynamicsRegression {
+    /// `ẍ` on `φ_d = [u, q̇, q − c, 1, u_j (q_k − c_k)]` (the learner until D23).
+    Level,
+    /// The change between two consecutive transitions, divided by their time step:
+    /// `Δẍ/Δt` on `Δφ_d/Δt`. The state moves by `O(Δt)` in one control period while the
+    /// exploration's innovation moves `u` by `O(√Δt)`, so `Δu` is nearly independent of the
+    /// state, and whatever `φ_d` leaves unmodelled in `ẍ(q, q̇)` (quadratic velocity terms,
+    /// curvature of gravity and of `M⁻¹` inside the field) cancels to second order instead of
+    /// biasing `Θ_u` through the policy's correlation of `u` with the state. The constant is
+    /// not identified (its change is 0; the ridge keeps it at 0), so the fit predicts changes,
+    /// not levels. Only consecutive transitions (one control period apart) are learned.
+    #[default]
+    Difference,
 }
 
 /// The random process of the exploration noise.
@@ -320,6 +351,9 @@ impl Default for DynamicsConfig {
             forgetting: 0.99995,
             learn_every: 1,
             solve_every: 4,
+            regression: DynamicsRegression::Difference,
+            trust_region: 0.0,
+            weight_power: 1.0,
         }
     }
 }

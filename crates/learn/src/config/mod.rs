@@ -10,8 +10,8 @@ mod validate;
 pub use adaptation::AdaptationConfig;
 
 pub use groups::{
-    ControllerConfig, CostKind, DynamicsConfig, Experimental, ExplorationConfig, GravityConfig,
-    GuardConfig, NoiseProcess, NominalConfig, PartitionConfig,
+    ControllerConfig, CostKind, DynamicsConfig, DynamicsRegression, Experimental,
+    ExplorationConfig, GravityConfig, GuardConfig, NoiseProcess, NominalConfig, PartitionConfig,
 };
 use serde::{Deserialize, Serialize};
 

@@ -82,6 +82,12 @@ impl LearnerConfig {
         })?;
         ensure(d.learn_every >= 1 && d.solve_every >= 1, || {
             "dynamics.learn_every and dynamics.solve_every must be ≥ 1".into()
+        })?;
+        ensure(d.trust_region.is_finite() && d.trust_region >= 0.0, || {
+            format!("dynamics.trust_region {} must be ≥ 0", d.trust_region)
+        })?;
+        ensure(finite_at_least(d.weight_power, 1.0), || {
+            format!("dynamics.weight_power {} must be ≥ 1", d.weight_power)
         })
     }
 

@@ -83,6 +83,48 @@ impl Features {
         }
     }
 
+    /// The shared parts of the difference form of `φ_d` (`DynamicsRegression::Difference`):
+    /// `Δu/Δt`, `Δq̇/Δt` and 0 for the constant, from the previous transition's `u0, q̇0`.
+    pub fn dynamics_common_difference(
+        &self,
+        phi_d: &mut [f64],
+        (u, u0): (&[f64], &[f64]),
+        (qd, qd0): (&[f64], &[f64]),
+        inv_dt: f64,
+    ) {
+        let n = self.n;
+        for i in 0..n {
+            phi_d[i] = (u[i] - u0[i]) * inv_dt;
+            phi_d[n + i] = (qd[i] - qd0[i]) * inv_dt;
+        }
+        phi_d[3 * n] = 0.0;
+    }
+
+    /// The field's parts of the difference form of `φ_d`: `Δq/Δt` and the change of the
+    /// bilinear terms `u_j (q_k − c_k)` over `Δt`, from the previous transition's `q0, u0`.
+    pub fn dynamics_local_difference(
+        &self,
+        phi_d: &mut [f64],
+        (q, q0): (&[f64], &[f64]),
+        (u, u0): (&[f64], &[f64]),
+        center: &[f64],
+        inv_dt: f64,
+    ) {
+        let n = self.n;
+        for i in 0..n {
+            phi_d[2 * n + i] = (q[i] - q0[i]) * inv_dt;
+        }
+        if self.bilinear {
+            for j in 0..n {
+                for k in 0..n {
+                    let now = u[j] * (q[k] - center[k]);
+                    let before = u0[j] * (q0[k] - center[k]);
+                    phi_d[3 * n + 1 + j * n + k] = (now - before) * inv_dt;
+                }
+            }
+        }
+    }
+
     /// Adds `w · Â_i(q)` (m×n, row-major into `a`) of one field's dynamics coefficients `theta`
     /// (`φ_d`-rows × m): `Â_i(q) = Θ_u + Σ_k (q_k − c_k) Θ_{u_j q_k}`.
     pub fn add_gain(&self, theta: &DMatrix<f64>, q: &[f64], center: &[f64], w: f64, a: &mut [f64]) {
@@ -168,6 +210,35 @@ mod tests {
         );
         // u_j (q_k − c_k), row j.
         assert_eq!(&d[10..], &[1.0, 0.0, -1.0, 2.0, 0.0, -2.0, 3.0, 0.0, -3.0]);
+    }
+
+    /// The difference form of `φ_d` is the change of the levels over `Δt`, with 0 for the
+    /// constant (`DynamicsRegression::Difference`).
+    #[test]
+    fn the_difference_form_is_the_change_of_the_levels() {
+        let f = Features::new(3, 2, true, true);
+        let c = [0.1, -0.2, 0.3];
+        let (q0, q1) = ([0.2, 0.4, -0.1], [0.25, 0.35, -0.05]);
+        let (qd0, qd1) = ([1.0, -2.0, 0.5], [1.5, -1.0, 0.0]);
+        let (u0, u1) = ([3.0, -1.0, 2.0], [2.0, 0.5, 2.5]);
+        let level = |q: &[f64], qd: &[f64], u: &[f64]| {
+            let mut d = vec![f64::NAN; f.dynamics_len()];
+            f.dynamics_common(&mut d, u, qd);
+            f.dynamics_local(&mut d, q, u, &c);
+            d
+        };
+        let (a, b) = (level(&q0, &qd0, &u0), level(&q1, &qd1, &u1));
+        let mut d = vec![f64::NAN; f.dynamics_len()];
+        f.dynamics_common_difference(&mut d, (&u1, &u0), (&qd1, &qd0), 500.0);
+        f.dynamics_local_difference(&mut d, (&q1, &q0), (&u1, &u0), &c, 500.0);
+        for k in 0..d.len() {
+            let want = if k == 9 { 0.0 } else { (b[k] - a[k]) * 500.0 };
+            assert!(
+                (d[k] - want).abs() <= 1e-9 * want.abs().max(1.0),
+                "{k}: {}",
+                d[k]
+            );
+        }
     }
 
     /// The stack path of `add_gain` gives the bits of the entry-by-entry one.

@@ -9,7 +9,7 @@ use super::nominal::nominal_into;
 use super::stats::{LearnerStats, Scratch};
 use super::{AdaptationSignal, LoadCorrection};
 use super::{Features, Learner, Models, State};
-use crate::config::LearnerConfig;
+use crate::config::{DynamicsRegression, LearnerConfig};
 use crate::error::Result;
 use crate::local::{LocalSpec, MStep, Pace};
 use lwpr::RfEvent;
@@ -66,7 +66,7 @@ impl Step<'_> {
         let known = self.relabel(cur)?;
         self.learn_load(cur)?;
         let r = cost(self.cfg, known, self.ws);
-        self.update_locals(cur, r)
+        self.update_locals(prev, cur, r)
     }
 
     /// The models that learn from every transition without rewards: `ĝ` (unless frozen; its
@@ -146,6 +146,7 @@ impl Step<'_> {
             m: self.m,
             dynamics_features: self.features.dynamics_len(),
             dynamics_forgetting: self.cfg.dynamics.forgetting,
+            dynamics_trust_region: self.cfg.dynamics.trust_region,
             rwr: &self.cfg.controllers.rwr,
             trained_ess: self.cfg.controllers.trained_ess,
         };
@@ -268,17 +269,33 @@ impl Step<'_> {
     /// with cost `r`, and the M-steps run when due (counted). With `adaptation.enabled`, the
     /// fields first predict `ẍ` (every `check_every` steps) for the re-adaptation's level, and
     /// forget and learn at its strength (`adapt.rs`).
-    fn update_locals(&mut self, cur: &Measurement, r: f64) -> Result<()> {
+    fn update_locals(&mut self, prev: &Measurement, cur: &Measurement, r: f64) -> Result<()> {
         let (q, qd, u) = (cur.q.as_slice(), cur.qd.as_slice(), cur.u.as_slice());
+        let (q0, qd0, u0) = (prev.q.as_slice(), prev.qd.as_slice(), prev.u.as_slice());
         let xdd = cur.xdd.as_slice();
         let (f, ws) = (self.features, &mut *self.ws);
         f.controller_common(&mut ws.phi, xdd, qd);
-        f.dynamics_common(&mut ws.phi_d, u, qd);
+        let dc = &self.cfg.dynamics;
+        // The difference form needs one control period between the transitions.
+        let step = cur.t - prev.t;
+        let difference = dc.regression == DynamicsRegression::Difference;
+        let inv_dt = 1.0 / step;
+        let consecutive = step > 0.5 * self.dt && step < 1.5 * self.dt;
+        if difference {
+            f.dynamics_common_difference(&mut ws.phi_d, (u, u0), (qd, qd0), inv_dt);
+            for ((t, x), x0) in ws.xdd_target.iter_mut().zip(xdd).zip(prev.xdd.iter()) {
+                *t = (x - x0) * inv_dt;
+            }
+        } else {
+            f.dynamics_common(&mut ws.phi_d, u, qd);
+            ws.xdd_target.copy_from_slice(xdd);
+        }
         let now = self.stats.samples;
-        let dyn_now = now.is_multiple_of(self.cfg.dynamics.learn_every as u64);
+        let dyn_now = now.is_multiple_of(dc.learn_every as u64) && (!difference || consecutive);
         let update_every = self.cfg.controllers.update_every;
         let ad = &self.cfg.adaptation;
-        let check = ad.enabled && now.is_multiple_of(ad.check_every as u64);
+        let check =
+            ad.enabled && now.is_multiple_of(ad.check_every as u64) && (!difference || consecutive);
         let adapting = ad.enabled && self.adapt.strength > 0.0;
         let pace = Pace {
             solve_every: self.cfg.dynamics.solve_every as u64,
@@ -298,12 +315,16 @@ impl Step<'_> {
                 continue;
             };
             local.last_active = now;
-            if dyn_now || check {
+            if difference && (dyn_now || check) {
+                let c = &local.center;
+                f.dynamics_local_difference(&mut ws.phi_d, (q, q0), (u, u0), c, inv_dt);
+            } else if dyn_now || check {
                 f.dynamics_local(&mut ws.phi_d, q, u, &local.center);
             }
             if check && local.dynamics_updates > 0 {
                 local.dynamics.mean_into(&ws.phi_d, &mut ws.y)?;
-                let e: f64 = xdd.iter().zip(&ws.y).map(|(x, y)| (x - y).powi(2)).sum();
+                let x = &ws.xdd_target;
+                let e: f64 = x.iter().zip(&ws.y).map(|(x, y)| (x - y).powi(2)).sum();
                 let v = local.dynamics.mean_sq_residual().max(floor);
                 se += a.w * e;
                 sv += a.w * v * self.m as f64;
@@ -314,7 +335,12 @@ impl Step<'_> {
                 local.rwr.decay(fc);
             }
             if dyn_now {
-                local.dynamics.observe(&ws.phi_d, xdd, 0.0, a.w)?;
+                let w = if dc.weight_power == 1.0 {
+                    a.w
+                } else {
+                    a.w.powf(dc.weight_power)
+                };
+                local.dynamics.observe(&ws.phi_d, &ws.xdd_target, 0.0, w)?;
             }
             f.controller_local(&mut ws.phi, q, &local.center);
             let r = if adapting { self.adapt.cost(r) } else { r };

@@ -19,6 +19,8 @@
 mod adapt;
 mod command;
 mod cost;
+#[cfg(test)]
+mod dynamics_tests;
 mod exploration;
 #[cfg(test)]
 mod exploration_rate_tests;

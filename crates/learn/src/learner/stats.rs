@@ -56,6 +56,8 @@ pub(crate) struct Scratch {
     pub a_hat: Vec<f64>,
     pub y: Vec<f64>,
     pub s: Vec<f64>,
+    /// The local dynamics' regression target: `ẍ`, or `Δẍ/Δt` in the difference form.
+    pub xdd_target: Vec<f64>,
 }
 
 impl Scratch {
@@ -78,6 +80,7 @@ impl Scratch {
             a_hat: vec![0.0; m * n],
             y: vec![0.0; m],
             s: vec![0.0; m * m],
+            xdd_target: vec![0.0; m],
         }
     }
 }
