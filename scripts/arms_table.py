@@ -93,7 +93,7 @@ def measure(args, name, rel, opts):
     row = {"name": name, "file": rel, "opts": opts}
     rc, last, err = run([args.osrl, "robot", "--robot", f, "--json", *opts], base + ".robot")
     if rc != 0:
-        row["refused"] = "load: " + error_text(err, args.robots)
+        row["refused"] = error_text(err, args.robots)
         return row
     info = json.loads(last)
     row["dof"] = info["dof"]
@@ -113,6 +113,11 @@ def measure(args, name, rel, opts):
                 out.write(last + "\n")
         else:
             row["train_error"] = error_text(err, args.robots)
+    elif not os.path.exists(train_json) and os.path.exists(base + ".train.err"):
+        with open(base + ".train.err") as fh:
+            err = fh.read()
+        if "rror" in err:
+            row["train_error"] = error_text(err, args.robots)
     if os.path.exists(train_json):
         with open(train_json) as fh:
             row["train"] = json.loads(fh.read())
@@ -123,28 +128,34 @@ def fmt_train(t):
     if t is None:
         return "—"
     div = ", diverged" if t.get("diverged") else ""
+    curve = [p for p in t.get("learning_curve", []) if not p.get("diverged")]
+    best = min(curve, key=lambda p: p["tracking_rms_mm"], default=None)
+    best = f"; best {best['tracking_rms_mm']:.3g} mm at minute {best['sim_minutes']:.0f}" if best else ""
+    unsettled = f", {t['unsettled_starts']} unsettled starts" if t.get("unsettled_starts") else ""
+    stage = f"; highest stage {t['max_stage']}" if t.get("max_stage") is not None else ""
     return (f"{t['tracking_rms_mm']:.3g} mm, nMSE {t['command_nmse']:.3g}{div} "
             f"({t['episodes']} episodes, {t['aborted_episodes']} aborted, "
             f"{t['braked_episodes']} braked ({t.get('braked_on_step', 0)} on a jump), "
-            f"{t['clipped_on_policy']} clipped; max step {t['max_command_step']:.2f} N·m vs "
+            f"{t['clipped_on_policy']} clipped{unsettled}; max step {t['max_command_step']:.2f} N·m vs "
             f"analytical {t['max_command_step_analytical']:.2f}; "
-            f"rejected {100 * t.get('rejected_share', 0):.3g} %)")
+            f"rejected {100 * t.get('rejected_share', 0):.3g} %{best}{stage})")
 
 
 def table(rows):
-    out = ["| robot (file) | DOF | tip | eq. 7 RMS (mm) | learned after the run |",
+    """Two Markdown tables: the robots that load and track (eq. 7, learned), the refused ones."""
+    out = ["| robot (file, options) | DOF | tip | eq. 7 RMS (mm) | learned |",
            "|---|---|---|---|---|"]
+    refused = ["| robot (file, options) | the error |", "|---|---|"]
     for r in rows:
-        label = f"{r['name']} (`{os.path.basename(r['file'])}`{' ' + ' '.join(r['opts']) if r['opts'] else ''})"
+        opts = " " + " ".join(r["opts"]) if r["opts"] else ""
+        label = f"{r['name']} (`{os.path.basename(r['file'])}`{opts})"
         if "refused" in r:
-            dof = r.get("dof", "—")
-            tip = f"`{r['tip']}`" if r.get("tip") else "—"
-            out.append(f"| {label} | {dof} | {tip} | refused: {r['refused']} | — |")
+            refused.append(f"| {label} | {r['refused']} |")
             continue
         eq7 = r["eq7"]["tracking_rms_mm"]
         learned = r.get("train_error") and "train failed: " + r["train_error"] or fmt_train(r.get("train"))
         out.append(f"| {label} | {r['dof']} | `{r['tip']}` | {eq7:.4f} | {learned} |")
-    return "\n".join(out)
+    return "\n".join(out) + "\n\nRefused:\n\n" + "\n".join(refused)
 
 
 def main():
