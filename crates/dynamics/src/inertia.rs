@@ -108,15 +108,22 @@ impl Inertia {
 /// values.
 pub const INERTIA_TOLERANCE: f64 = 1e-6;
 
+/// Absolute tolerance of [`Inertia::unphysical`] (kg·m², added to the relative one): a gram at
+/// 30 µm. A point mass written with round-off in its products of inertia (iCub's `head`: every
+/// moment 0, `ixz` 2.4e-35) has principal moments of ±that size and a trace of 0, which no
+/// relative tolerance accepts.
+pub const INERTIA_FLOOR: f64 = 1e-12;
+
 impl Inertia {
     /// Why the rotational inertia `ic` about a body's centre of mass is one no rigid body can
     /// have, or `None`: a principal moment below zero, or principal moments violating the
     /// triangle inequality `I₁ + I₂ ≥ I₃`, each by more than [`INERTIA_TOLERANCE`] × `scale`
-    /// (kg·m²; the trace for a file's values). Point masses and thin rods (zero moments) pass.
+    /// (kg·m²; the trace for a file's values) + [`INERTIA_FLOOR`]. Point masses and thin rods
+    /// (zero moments) pass.
     pub fn unphysical(ic: &Matrix3<f64>, scale: f64) -> Option<String> {
         let mut e = nalgebra::SymmetricEigen::new(*ic).eigenvalues;
         e.as_mut_slice().sort_by(f64::total_cmp);
-        let tol = INERTIA_TOLERANCE * scale;
+        let tol = INERTIA_TOLERANCE * scale + INERTIA_FLOOR;
         let moments = format!("{:.3e}, {:.3e}, {:.3e} kg·m²", e[0], e[1], e[2]);
         if !e.iter().all(|x| x.is_finite()) {
             Some("the inertia is not finite".into())

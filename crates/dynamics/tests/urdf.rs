@@ -136,3 +136,40 @@ fn fixed_joints_are_folded_into_their_parent() {
     osrl_dynamics::forward_kinematics(&model, &mut data, &[0.0]).unwrap();
     assert!((data.ee_pos.x - 0.5).abs() < 1e-12);
 }
+
+/// A point mass whose zero inertia carries round-off in a product (iCub's `head`: `ixz`
+/// 2.4e-35, every other entry 0; principal moments ±2.4e-35 about a trace of 0) loads as the
+/// point mass it is; an impossible inertia is still refused, naming the link.
+#[test]
+fn round_off_in_a_point_mass_is_accepted_and_impossible_inertias_refused() {
+    let arm = |inertia: &str| {
+        format!(
+            r#"<robot name="t"><link name="base"/>
+      <link name="head"><inertial><mass value="1.33687"/><origin xyz="0.0185 -0.1108 0"/><inertia {inertia}/></inertial></link>
+      <joint name="j" type="continuous"><parent link="base"/><child link="head"/><axis xyz="0 0 1"/></joint>
+    </robot>"#
+        )
+    };
+    let model = parse_urdf(&arm(
+        r#"ixx="0" ixy="0" ixz="2.40741e-35" iyy="0" iyz="0" izz="0""#,
+    ))
+    .unwrap();
+    let mut data = model.data();
+    let m = osrl_dynamics::crba(&model, &mut data, &[0.0]).unwrap();
+    let r2 = 0.0185f64.powi(2) + 0.1108f64.powi(2);
+    assert!((m[(0, 0)] - 1.33687 * r2).abs() < 1e-12, "{}", m[(0, 0)]);
+    let m = urdf_error(&arm(
+        r#"ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="-1e-9""#,
+    ));
+    assert!(
+        m.contains("'head'") && m.contains("positive semi-definite"),
+        "{m}"
+    );
+    let m = urdf_error(&arm(
+        r#"ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.3""#,
+    ));
+    assert!(
+        m.contains("'head'") && m.contains("triangle inequality"),
+        "{m}"
+    );
+}

@@ -54,9 +54,18 @@ pub(super) fn eq7_tracks(model: &Model, traj: &Trajectory, start: &[f64]) -> Res
         } else {
             String::new()
         };
+        // Without saturation or stiff friction the usual cause is a joint held at its limit.
+        let limits = match m.first_limit_s {
+            Some(t) => format!(
+                ", {} steps at a joint limit (the first at t = {t:.2} s: a joint the task or the \
+                 null space needs is held at its hard stop)",
+                m.limit_steps
+            ),
+            None => ", no step at a joint limit".into(),
+        };
         return Err(ControlError::Unreachable(format!(
             "eq. 7 tracks it at {:.4} mm RMS (bound {TRACKING_BOUND_MM} mm) with {} saturated \
-             torque steps{stiff}",
+             torque steps{limits}{stiff}",
             m.tracking_rms_mm, m.torque_saturation_steps
         )));
     }

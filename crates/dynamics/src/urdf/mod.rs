@@ -29,7 +29,8 @@
 //!    form the fixed base and do not enter the dynamics.
 //! 6. **Checks** (errors name the link or joint): every link that moves must have a physical
 //!    inertia — principal moments about the centre of mass non-negative and obeying the triangle
-//!    inequality, each within [`crate::inertia::INERTIA_TOLERANCE`] of the trace (point masses and
+//!    inequality, each within [`crate::inertia::INERTIA_TOLERANCE`] of the trace plus
+//!    [`crate::inertia::INERTIA_FLOOR`] (round-off in a point mass's products; point masses and
 //!    massless frames are fine); a degree of freedom's `<limit effort>` must be positive;
 //!    `revolute` and `prismatic` joints need a `<limit>`. `<dynamics damping friction>` become the
 //!    viscous and Coulomb friction. A file that declares `<osrl identified_inertias="true"/>` (a

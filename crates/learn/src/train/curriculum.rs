@@ -42,6 +42,10 @@ pub struct CurriculumConfig {
     /// (below 0.5 N·m on the built-in arms), half the torque-rate limit's 2 N·m per 2 ms — and
     /// in proportion above; a controller that starts to oscillate is stopped at its first jump.
     pub brake_step: Option<f64>,
+    /// A stage is left backwards after this many failed (braked or aborted) episodes in a row
+    /// at it (≥ 1); the failures before retry the same stage. Default 1: back after every
+    /// failure, as the curriculum was tuned on the built-in arms.
+    pub retreat_after: usize,
 }
 
 impl Default for CurriculumConfig {
@@ -54,6 +58,7 @@ impl Default for CurriculumConfig {
             hold_seconds: 1.0,
             brake_error: 0.01,
             brake_step: None,
+            retreat_after: 1,
         }
     }
 }
@@ -80,6 +85,9 @@ impl CurriculumConfig {
             ("brake_error", self.brake_error, false),
             ("brake_step", self.brake_step.unwrap_or(1.0), false),
         ];
+        if self.retreat_after == 0 {
+            return bad("curriculum.retreat_after = 0: must be at least 1".into());
+        }
         for (what, v, zero_ok) in fields {
             if !(v.is_finite() && (v > 0.0 || (zero_ok && v == 0.0))) {
                 return bad(format!("curriculum.{what} = {v} is out of range"));
@@ -253,6 +261,9 @@ impl EpisodePath {
 pub(crate) struct Curriculum {
     stages: Vec<[f64; 2]>,
     pub stage: usize,
+    /// Failed episodes in a row at the current stage, and how many make it go back.
+    failures: usize,
+    retreat_after: usize,
 }
 
 impl Curriculum {
@@ -262,7 +273,12 @@ impl Curriculum {
         } else {
             cfg.stages.clone()
         };
-        Self { stages, stage: 0 }
+        Self {
+            stages,
+            stage: 0,
+            failures: 0,
+            retreat_after: cfg.retreat_after.max(1),
+        }
     }
 
     /// The current stage `[amplitude, speed]`.
@@ -270,11 +286,19 @@ impl Curriculum {
         self.stages[self.stage]
     }
 
-    /// After an episode: forward on a good one, back on an aborted or braked one.
+    /// After an episode: forward on a good one, back after `retreat_after` aborted or braked
+    /// ones in a row at the stage.
     pub fn after_episode(&mut self, failed: bool, rms_error: f64, advance_error: f64) {
         if failed {
-            self.stage = self.stage.saturating_sub(1);
-        } else if rms_error < advance_error && self.stage + 1 < self.stages.len() {
+            self.failures += 1;
+            if self.failures >= self.retreat_after {
+                self.stage = self.stage.saturating_sub(1);
+                self.failures = 0;
+            }
+            return;
+        }
+        self.failures = 0;
+        if rms_error < advance_error && self.stage + 1 < self.stages.len() {
             self.stage += 1;
         }
     }
@@ -371,5 +395,42 @@ mod tests {
             held > 1000 && held_before_end > 100,
             "{held} {held_before_end}"
         );
+    }
+
+    /// Back a stage after every failure by default; with `retreat_after` 3 the same stage is
+    /// retried twice, the third failure in a row goes back, and a good episode resets the count.
+    #[test]
+    fn the_curriculum_retreats_after_failures_in_a_row() {
+        use super::Curriculum;
+        let mut one = Curriculum::new(&CurriculumConfig::default());
+        one.after_episode(false, 0.001, 0.002);
+        one.after_episode(false, 0.001, 0.002);
+        assert_eq!(one.stage, 2);
+        one.after_episode(true, 0.0, 0.002);
+        assert_eq!(one.stage, 1);
+        let cfg = CurriculumConfig {
+            retreat_after: 3,
+            ..CurriculumConfig::default()
+        };
+        let mut three = Curriculum::new(&cfg);
+        three.after_episode(false, 0.001, 0.002);
+        three.after_episode(false, 0.001, 0.002);
+        assert_eq!(three.stage, 2);
+        three.after_episode(true, 0.0, 0.002);
+        three.after_episode(true, 0.0, 0.002);
+        assert_eq!(three.stage, 2, "two failures retry the stage");
+        // A good but slow episode (no advance) resets the count.
+        three.after_episode(false, 0.005, 0.002);
+        three.after_episode(true, 0.0, 0.002);
+        three.after_episode(true, 0.0, 0.002);
+        assert_eq!(three.stage, 2);
+        three.after_episode(true, 0.0, 0.002);
+        assert_eq!(three.stage, 1, "the third failure in a row goes back");
+        assert!(CurriculumConfig {
+            retreat_after: 0,
+            ..CurriculumConfig::default()
+        }
+        .validate()
+        .is_err());
     }
 }

@@ -24,7 +24,9 @@ mod trainer;
 
 pub use config::{BabbleConfig, TrainConfig};
 pub use curriculum::{CurriculumConfig, QuietHolds};
-pub use observer::{EpisodeReport, Observer, OnEvaluation, Phase, Progress};
+pub use observer::{
+    EpisodeOutcome, EpisodeRecord, EpisodeReport, Observer, OnEvaluation, Phase, Progress,
+};
 pub use paths::PathSource;
 pub use safety::{StepPoint, STEP_BIN_SECONDS};
 pub use trainer::{Evaluate, TrainSummary, Trainer};

@@ -66,6 +66,37 @@ pub struct EpisodeReport {
     pub stage: [f64; 2],
 }
 
+/// How an on-policy episode ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum EpisodeOutcome {
+    /// Ran to the end of its path (or of the run).
+    Completed,
+    /// Braked on the task error (`curriculum.brake_error`).
+    BrakedOnError,
+    /// Braked on a refused command jump (`curriculum.brake_step`).
+    BrakedOnStep,
+    /// Aborted at `reset_error`.
+    Aborted,
+}
+
+/// One on-policy episode in the run's log (`TrainSummary::episode_log`, the training JSON's
+/// `episode_log`): when it started, at which curriculum stage, how it ended.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct EpisodeRecord {
+    /// Simulated minute of training at its start.
+    pub start_minute: f64,
+    /// The curriculum's stage index (into `curriculum.stages`).
+    pub stage: usize,
+    /// Simulated seconds it ran (the final stop and hold included when it ran to its end).
+    pub seconds: f64,
+    /// RMS of the task error over it (mm).
+    pub rms_error_mm: f64,
+    pub outcome: EpisodeOutcome,
+    /// The joint whose refused command jumped first (braked on a step), else `None`.
+    pub jump_joint: Option<usize>,
+}
+
 impl Progress {
     /// The progress of a run that has not started: babbling, nothing learned.
     pub fn start() -> Self {

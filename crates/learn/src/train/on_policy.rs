@@ -3,7 +3,7 @@
 //! (counted as aborted), the arm brought home in between.
 
 use super::curriculum::EpisodePath;
-use super::observer::{EpisodeReport, Phase};
+use super::observer::{EpisodeOutcome, EpisodeRecord, EpisodeReport, Phase};
 use super::Trainer;
 use crate::error::Result;
 use osrl_control::{reference_acceleration, task_error};
@@ -67,7 +67,22 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
         } else {
             cfg.switch_seconds
         });
+        let (start_minute, stage_index) = (self.minutes(), self.curriculum.stage);
         let report = self.drive_path(&path, stage)?;
+        let outcome = match (report.aborted, report.braked, self.jumped) {
+            (true, _, _) => EpisodeOutcome::Aborted,
+            (_, true, true) => EpisodeOutcome::BrakedOnStep,
+            (_, true, false) => EpisodeOutcome::BrakedOnError,
+            _ => EpisodeOutcome::Completed,
+        };
+        self.episode_log.push(EpisodeRecord {
+            start_minute,
+            stage: stage_index,
+            seconds: report.seconds,
+            rms_error_mm: report.rms_error * 1e3,
+            outcome,
+            jump_joint: self.jump_joint.take().filter(|_| report.braked),
+        });
         let failed = report.aborted || report.braked;
         let cc = &cfg.curriculum;
         self.curriculum
@@ -85,7 +100,7 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
         let cc = &self.cfg.curriculum;
         let mut xdd_ref = vec![0.0; self.axes.len()];
         let (mut e2, mut count, mut aborted, mut braked) = (0.0, 0u64, false, false);
-        (self.jump_guard, self.jumped) = (true, false);
+        (self.jump_guard, self.jumped, self.jump_joint) = (true, false, None);
         while (count as f64) < (path.seconds / self.dt).round() && !self.done() {
             let t = count as f64 * self.dt;
             let e = self.track(path, t, &mut xdd_ref)?;

@@ -3,7 +3,7 @@
 //! `on_policy.rs`; [`Trainer::run`] reads as the list of them.
 
 use super::curriculum::Curriculum;
-use super::observer::{Observer, Phase, Progress};
+use super::observer::{EpisodeRecord, Observer, Phase, Progress};
 use super::paths::{check_start, PathSource};
 use super::safety::{StepMonitor, StepPoint};
 use super::TrainConfig;
@@ -68,6 +68,9 @@ pub struct TrainSummary {
     /// Episode paths drawn from a path source (0 when every episode ran the task path).
     #[serde(default)]
     pub paths_drawn: u64,
+    /// Every on-policy episode: start, curriculum stage, length, error, outcome.
+    #[serde(default)]
+    pub episode_log: Vec<EpisodeRecord>,
 }
 
 impl TrainSummary {
@@ -135,6 +138,10 @@ pub struct Trainer<'a, R: Robot + ?Sized> {
     /// Refused jumps per joint (the first joint over its step).
     jumps_by_joint: Vec<u64>,
     pub(super) jumped: bool,
+    /// The joint of the first refused jump since `jumped` was last cleared.
+    pub(super) jump_joint: Option<usize>,
+    /// The on-policy episodes so far.
+    pub(super) episode_log: Vec<EpisodeRecord>,
     /// The torque-rate limit on the driver's own (PD) commands, and how often it acted.
     pub(super) rate: RateLimiter,
     pub(super) rate_limited: u64,
@@ -226,6 +233,8 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
             brake_steps,
             jumps_by_joint: vec![0; n],
             jumped: false,
+            jump_joint: None,
+            episode_log: Vec::new(),
             rate,
             rate_limited: 0,
             step_limited: 0,
@@ -322,6 +331,7 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
             // Refused: the previous command again, and the episode brakes.
             self.steps_seen.repeat_last(&mut self.u);
             self.jumped = true;
+            self.jump_joint.get_or_insert(j);
             self.jumps_by_joint[j] += 1;
         }
         if let Some(limit) = self.cfg.command_step_limit {
@@ -411,6 +421,7 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
             n_local_models: self.learner.n_local_models(),
             unsettled_starts: self.unsettled_starts,
             paths_drawn: self.paths_drawn,
+            episode_log: std::mem::take(&mut self.episode_log),
         }
     }
 }
@@ -479,6 +490,19 @@ mod tests {
         assert_eq!(log.evaluations[4].1, Phase::OnPolicy);
         assert!(summary.episodes > 0, "{summary:?}");
         assert_eq!(summary.aborted_episodes, summary.episodes);
+        // The log has every episode, each aborted, in order of its start, at stage 0.
+        assert_eq!(summary.episode_log.len() as u64, summary.episodes);
+        assert!(summary
+            .episode_log
+            .iter()
+            .all(|e| e.outcome == crate::train::EpisodeOutcome::Aborted
+                && e.stage == 0
+                && e.jump_joint.is_none()));
+        assert!(summary
+            .episode_log
+            .windows(2)
+            .all(|w| w[0].start_minute < w[1].start_minute));
+        assert!(summary.episode_log[0].start_minute >= 0.4 - 1e-9);
         assert_eq!(log.episodes, summary.episodes);
         assert_eq!(summary.learning_curve.len(), 5);
         // The learner's ĝ is frozen once on-policy learning starts.
