@@ -1,8 +1,9 @@
 //! Issue 27's small test: a family-trained planar3 controller beats a figure-8-only one of the
-//! same training time on a held-out circle (drawn with the held-out seed): it tracks it to less
-//! than half the error (measured: 0.22 mm against 1.35 mm after 8 simulated minutes, seed 0).
-//! Their command nMSE on that circle is closer at this size (0.37 and 0.62), so it is printed, not
-//! asserted.
+//! same training time on a held-out circle (drawn with the held-out seed): both its tracking and
+//! its command nMSE there are below 3/4 of the figure-8-only controller's. Measured after 8
+//! simulated minutes, seed 0: 0.328 mm / 0.107 against 0.566 mm / 0.206 (with the local dynamics
+//! on differences, D23; before it, 0.22 mm / 0.37 against 1.35 mm / 0.62, when the tracking was
+//! asserted below half and the nMSE, then closer, was not asserted).
 
 use osrl_control::TrajectoryKind;
 use osrl_experiments::family::held_out;
@@ -47,7 +48,8 @@ fn a_family_trained_controller_beats_a_figure8_only_one_on_a_held_out_circle() {
         fam.tracking_rms_mm, fam.command_nmse, f8.tracking_rms_mm, f8.command_nmse
     );
     assert!(
-        fam.tracking_rms_mm < 0.5 * f8.tracking_rms_mm,
+        fam.tracking_rms_mm < 0.75 * f8.tracking_rms_mm
+            && fam.command_nmse < 0.75 * f8.command_nmse,
         "family {:.3} mm / {:.4}, figure-8 only {:.3} mm / {:.4}",
         fam.tracking_rms_mm,
         fam.command_nmse,
