@@ -116,3 +116,18 @@ pub fn one_trained_field(mut cfg: LearnerConfig) -> (Learner, Vec<f64>) {
     let center = local.center.clone();
     (learner, center)
 }
+
+/// A short training run of `minutes` for the driver's tests: 0.4 simulated minutes of babbling
+/// first, no evaluations.
+pub fn short_training(minutes: f64) -> crate::train::TrainConfig {
+    use crate::train::{BabbleConfig, TrainConfig};
+    TrainConfig {
+        minutes,
+        eval_every_minutes: 0.0,
+        babble: BabbleConfig {
+            minutes: 0.4,
+            ..BabbleConfig::default()
+        },
+        ..TrainConfig::default()
+    }
+}

@@ -4,7 +4,7 @@
 use super::paths::PathSource;
 use crate::error::Result;
 use crate::learner::fixture;
-use crate::train::{BabbleConfig, OnEvaluation, TrainConfig, Trainer};
+use crate::train::{OnEvaluation, TrainConfig, Trainer};
 use crate::Learner;
 use nalgebra::Vector3;
 use osrl_control::{Trajectory, TrajectoryConfig};
@@ -28,14 +28,8 @@ fn run(path: Trajectory) -> (Result<crate::train::TrainSummary>, u64) {
     let mut sim = fixture::robot();
     let mut learner = Learner::new(3, 2, 0.002, fixture::config()).unwrap();
     let cfg = TrainConfig {
-        minutes: 0.5,
-        eval_every_minutes: 0.0,
         reset_error: 1e-9,
-        babble: BabbleConfig {
-            minutes: 0.4,
-            ..BabbleConfig::default()
-        },
-        ..TrainConfig::default()
+        ..fixture::short_training(0.5)
     };
     let axes = model.task_axes().to_vec();
     let mut evaluate = |_: &mut Learner| Ok(Default::default());

@@ -1,7 +1,7 @@
 //! `TrainConfig::command_step_limit`: no on-policy command moves further than the limit from
 //! the one before, and the commands it held are counted (`docs/decisions.md`, D24).
 
-use super::{BabbleConfig, TrainConfig, Trainer};
+use super::{TrainConfig, Trainer};
 use crate::learner::fixture;
 use crate::Learner;
 use osrl_control::TrajectoryConfig;
@@ -14,14 +14,8 @@ fn run(limit: Option<f64>) -> super::TrainSummary {
     let mut sim = fixture::robot();
     let mut learner = Learner::new(3, 2, 0.002, fixture::config()).unwrap();
     let cfg = TrainConfig {
-        minutes: 0.6,
-        eval_every_minutes: 0.0,
         command_step_limit: limit,
-        babble: BabbleConfig {
-            minutes: 0.4,
-            ..BabbleConfig::default()
-        },
-        ..TrainConfig::default()
+        ..fixture::short_training(0.6)
     };
     let axes = model.task_axes().to_vec();
     let mut evaluate = |_: &mut Learner| Ok(Default::default());

@@ -430,7 +430,7 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
 mod tests {
     use super::Trainer;
     use crate::learner::fixture;
-    use crate::train::{BabbleConfig, Observer, Phase, Progress, TrainConfig};
+    use crate::train::{Observer, Phase, Progress, TrainConfig};
     use crate::Learner;
     use osrl_control::TrajectoryConfig;
     use osrl_dynamics::robots;
@@ -458,15 +458,10 @@ mod tests {
         let mut sim = fixture::robot();
         let mut learner = Learner::new(3, 2, 0.002, fixture::config()).unwrap();
         let cfg = TrainConfig {
-            minutes: 0.7,
             eval_every_minutes: 0.15,
             // Tiny: every on-policy episode from rest aborts at once (the path starts elsewhere).
             reset_error: 1e-9,
-            babble: BabbleConfig {
-                minutes: 0.4,
-                ..BabbleConfig::default()
-            },
-            ..TrainConfig::default()
+            ..fixture::short_training(0.7)
         };
         let axes = model.task_axes().to_vec();
         let mut evaluate = |_: &mut Learner| Ok(Default::default());
