@@ -53,6 +53,38 @@ impl Learner {
         }
         .run(prev, cur)
     }
+
+    /// Learns from `prev → cur` in the static gravity model alone (its gate decides whether the
+    /// transition is still), nothing else: the training driver's holds at path postures
+    /// (`TrainConfig::posture_holds`). Nothing before the models exist.
+    ///
+    /// # Errors
+    /// [`crate::LearnError::BadMeasurement`] for a rejected measurement (counted), or a model
+    /// failure.
+    pub fn learn_static_gravity(&mut self, prev: &Measurement, cur: &Measurement) -> Result<()> {
+        if let Err(e) = self.check(cur).and_then(|_| self.check(prev)) {
+            self.stats.rejected += 1;
+            return Err(e);
+        }
+        let State::Ready(models) = &mut self.state else {
+            return Ok(());
+        };
+        Step {
+            cfg: &self.cfg,
+            features: &self.features,
+            models,
+            stats: &mut self.stats,
+            ws: &mut self.ws,
+            n: self.n,
+            m: self.m,
+            dt: self.dt,
+            gravity_frozen: self.gravity_frozen,
+            static_frozen: self.static_frozen,
+            adapt: &mut self.adapt,
+            load: &mut self.load,
+        }
+        .learn_static(prev, cur, false)
+    }
 }
 
 impl Step<'_> {
@@ -79,11 +111,29 @@ impl Step<'_> {
         if dt > 0.0 && !self.gravity_frozen {
             self.models.gravity.learn(q0, qd0, q, qd, u, dt)?;
         }
+        self.learn_static(
+            prev,
+            cur,
+            self.gravity_frozen && !self.cfg.gravity.static_on_policy,
+        )?;
+        let every = self.cfg.partition.learn_every as u64;
+        let ad = &self.cfg.adaptation;
+        let frozen = ad.enabled && ad.freeze_partition;
+        if !frozen && self.stats.samples.is_multiple_of(every) {
+            self.models.forward.learn(q, qd, u, cur.xdd.as_slice())?;
+        }
+        Ok(())
+    }
+
+    /// The static gravity model learns the transition if it is still (its gate), unless
+    /// `off`, paused by the re-adaptation, or frozen.
+    fn learn_static(&mut self, prev: &Measurement, cur: &Measurement, off: bool) -> Result<()> {
+        let (q, qd, u) = (cur.q.as_slice(), cur.qd.as_slice(), cur.u.as_slice());
+        let dt = cur.t - prev.t;
+        let (q0, qd0) = (prev.q.as_slice(), prev.qd.as_slice());
         let ad = &self.cfg.adaptation;
         let paused = ad.enabled && ad.pause_static_gravity && self.adapt.strength > 0.0;
-        let static_on = (!self.gravity_frozen || self.cfg.gravity.static_on_policy)
-            && !paused
-            && !self.static_frozen;
+        let static_on = !off && !paused && !self.static_frozen;
         if let (true, true, Some(g)) = (dt > 0.0, static_on, self.models.gravity_static.as_mut()) {
             // With a load correction in `u0`, the static model keeps the gravity without it
             // (`c` at the last relabelled state, the previous one: the arm is still).
@@ -96,11 +146,6 @@ impl Step<'_> {
                 self.ws.z.as_slice()
             };
             g.learn(q0, qd0, q, qd, u, dt)?;
-        }
-        let every = self.cfg.partition.learn_every as u64;
-        let frozen = ad.enabled && ad.freeze_partition;
-        if !frozen && self.stats.samples.is_multiple_of(every) {
-            self.models.forward.learn(q, qd, u, cur.xdd.as_slice())?;
         }
         Ok(())
     }

@@ -136,6 +136,9 @@ pub struct TrainConfig {
     pub home_hold_seconds: f64,
     /// The curriculum and the path clock of the on-policy episodes.
     pub curriculum: super::CurriculumConfig,
+    /// Holds at recorded path postures on the way home, for the static gravity model
+    /// ([`super::PostureHolds`]). Default off.
+    pub posture_holds: super::PostureHolds,
     /// Seed of the exploration and babbling noise. Default 0.
     pub seed: u64,
 }
@@ -165,6 +168,7 @@ impl Default for TrainConfig {
             home_integral_seconds: 1.0,
             home_hold_seconds: 5.0,
             curriculum: super::CurriculumConfig::default(),
+            posture_holds: super::PostureHolds::default(),
             seed: 0,
         }
     }
@@ -225,7 +229,10 @@ impl TrainConfig {
             Some((what, _)) => Err(LearnError::InvalidConfig(format!(
                 "training setting {what} is out of range: {self:?}"
             ))),
-            None => self.curriculum.validate(),
+            None => {
+                self.curriculum.validate()?;
+                self.posture_holds.validate()
+            }
         }
     }
 }

@@ -43,6 +43,7 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
         } else {
             self.cfg.switch_seconds
         });
+        self.posture_holds(limit)?;
         self.pd_move(&home, 2.0, 0.0, 0.0, limit)?;
         self.hold_home(limit)
     }

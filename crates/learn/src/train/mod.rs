@@ -17,6 +17,9 @@ mod on_policy;
 mod paths;
 #[cfg(test)]
 mod paths_tests;
+mod postures;
+#[cfg(test)]
+mod postures_tests;
 mod safety;
 #[cfg(test)]
 mod step_limit_tests;
@@ -28,6 +31,7 @@ pub use observer::{
     EpisodeOutcome, EpisodeRecord, EpisodeReport, Observer, OnEvaluation, Phase, Progress,
 };
 pub use paths::PathSource;
+pub use postures::PostureHolds;
 pub use safety::{StepPoint, STEP_BIN_SECONDS};
 pub use trainer::{Evaluate, TrainSummary, Trainer};
 

@@ -68,6 +68,7 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
             cfg.switch_seconds
         });
         let (start_minute, stage_index) = (self.minutes(), self.curriculum.stage);
+        self.postures_episode_start();
         let report = self.drive_path(&path, stage)?;
         let outcome = match (report.aborted, report.braked, self.jumped) {
             (true, _, _) => EpisodeOutcome::Aborted,
@@ -117,6 +118,7 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
                 braked = true;
                 break;
             }
+            self.postures_record(count);
         }
         self.jump_guard = false;
         Ok(EpisodeReport {

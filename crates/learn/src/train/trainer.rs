@@ -161,6 +161,10 @@ pub struct Trainer<'a, R: Robot + ?Sized> {
     fade_len: u64,
     /// Paths drawn from the source.
     paths_drawn: u64,
+    /// The recorded path postures of `posture_holds`, and whether the transitions teach the
+    /// static gravity model alone (while `learning` is false: the holds at those postures).
+    pub(super) postures: super::postures::PosturePool,
+    pub(super) static_only: bool,
     wall: Instant,
 }
 
@@ -246,6 +250,8 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
             fade_left: 0,
             fade_len: 1,
             paths_drawn: 0,
+            postures: Default::default(),
+            static_only: false,
             wall,
         })
     }
@@ -352,6 +358,11 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
         self.steps_seen.tick(self.steps, self.per_min);
         if self.learning && self.steps.is_multiple_of(self.cfg.learn_every as u64) {
             match self.learner.learn(&self.prev, &cur) {
+                Ok(()) | Err(LearnError::BadMeasurement(_)) => {}
+                Err(e) => return Err(e),
+            }
+        } else if self.static_only {
+            match self.learner.learn_static_gravity(&self.prev, &cur) {
                 Ok(()) | Err(LearnError::BadMeasurement(_)) => {}
                 Err(e) => return Err(e),
             }
