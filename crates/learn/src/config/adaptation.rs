@@ -200,4 +200,25 @@ mod tests {
             assert!(e.contains("load_floor"), "{e}");
         }
     }
+
+    /// The two floors of the error ratio are positive and finite, and refused by name
+    /// otherwise.
+    #[test]
+    fn the_floors_are_checked() {
+        for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            let c = AdaptationConfig {
+                residual_floor_difference: bad,
+                ..AdaptationConfig::default()
+            };
+            let e = c.validate().unwrap_err().to_string();
+            assert!(e.contains("residual_floor_difference"), "{e}");
+            let c = AdaptationConfig {
+                command_floor: bad,
+                ..AdaptationConfig::default()
+            };
+            let e = c.validate().unwrap_err().to_string();
+            assert!(e.contains("command_floor"), "{e}");
+        }
+        assert!(AdaptationConfig::default().validate().is_ok());
+    }
 }
