@@ -6,7 +6,7 @@ use osrl_control::RobotChange;
 use osrl_experiments::adapt::{adapt, continuation, Adapted};
 use osrl_experiments::Setup;
 use osrl_learn::train::{BabbleConfig, TrainConfig};
-use osrl_learn::{AdaptationConfig, Learner};
+use osrl_learn::{AdaptationConfig, AdaptationSource, Learner};
 
 /// A planar3 controller after 2 simulated minutes (1.5 of babbling), and its set-up.
 fn trained() -> (Setup, Learner) {
@@ -40,25 +40,47 @@ fn settings(setup: &Setup, minutes: f64) -> TrainConfig {
 
 /// `minutes` of adaptation to `change` with the default re-adaptation.
 fn run(setup: &Setup, learner: &mut Learner, change: &str, minutes: f64) -> Adapted {
+    run_with(setup, learner, change, minutes, AdaptationConfig::default())
+}
+
+/// `minutes` of adaptation to `change` with the re-adaptation `adaptation`.
+fn run_with(
+    setup: &Setup,
+    learner: &mut Learner,
+    change: &str,
+    minutes: f64,
+    adaptation: AdaptationConfig,
+) -> Adapted {
     let change: RobotChange = change.parse().unwrap();
     let cfg = settings(setup, minutes);
-    adapt(
-        setup,
-        learner,
-        &change,
-        AdaptationConfig::default(),
-        &cfg,
-        &mut |_| {},
-    )
-    .unwrap()
+    adapt(setup, learner, &change, adaptation, &cfg, &mut |_| {}).unwrap()
 }
 
 /// A 0.5 kg payload: the level rises past `on_ratio` within the first evaluation interval and
-/// the re-adaptation acts; by the end the level is back below `on_ratio`.
+/// the re-adaptation acts; by the end the level is back below `on_ratio`. The same with the
+/// signal of the controllers' command error (`signal = "command"`, an option).
 #[test]
 fn a_payload_is_detected_and_the_signal_settles() {
-    let (setup, mut learner) = trained();
-    let r = run(&setup, &mut learner, "payload=0.5", 1.0);
+    let (setup, learner) = trained();
+    for signal in [AdaptationSource::Dynamics, AdaptationSource::Command] {
+        let mut learner = learner.clone();
+        let adaptation = AdaptationConfig {
+            signal,
+            ..AdaptationConfig::default()
+        };
+        detected_and_settled(run_with(
+            &setup,
+            &mut learner,
+            "payload=0.5",
+            1.0,
+            adaptation,
+        ));
+    }
+}
+
+/// The level rose past `on_ratio` in the first evaluation interval, the re-adaptation acted,
+/// and the level is back below `on_ratio` at the end; no episode aborted.
+fn detected_and_settled(r: Adapted) {
     let on = AdaptationConfig::default().on_ratio;
     let levels: Vec<(f64, f64)> = r.signal.iter().map(|(t, s)| (*t, s.level)).collect();
     assert!(r.peak_level > on, "peak {} {levels:?}", r.peak_level);

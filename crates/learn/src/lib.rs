@@ -31,9 +31,9 @@ pub mod train;
 mod variant;
 
 pub use config::{
-    AdaptationConfig, ControllerConfig, CostKind, DynamicsConfig, DynamicsRegression,
-    ExplorationConfig, GravityConfig, GuardConfig, LearnerConfig, NoiseProcess, NominalConfig,
-    PartitionConfig,
+    AdaptationConfig, AdaptationSource, ControllerConfig, CostKind, DynamicsConfig,
+    DynamicsRegression, ExplorationConfig, GravityConfig, GuardConfig, LearnerConfig, NoiseProcess,
+    NominalConfig, PartitionConfig,
 };
 pub use controller::{LearnedController, SourceCounts};
 pub use error::{LearnError, Result};

@@ -180,6 +180,11 @@ fn adapt_json(r: &Adapted, change: &RobotChange, robot: &str) -> Result<serde_js
         "minutes_to_nmse_0.05": r.minutes_to(|e| e.command_nmse <= 0.05),
         "adaptation_peak_level": r.peak_level,
         "adapting_steps": r.adapting_steps,
+        "adaptation_curve": r
+            .signal
+            .iter()
+            .map(|(t, a)| [*t, a.level, a.strength])
+            .collect::<Vec<_>>(),
         "learning_curve": curve_points(&curve),
     });
     let o = j.as_object_mut().context("the summary is a JSON object")?;

@@ -26,9 +26,14 @@ pub struct AdaptationConfig {
     pub on_ratio: f64,
     /// The level at which re-adaptation is at full strength (> `on_ratio`). Default 16.
     pub full_ratio: f64,
-    /// Floor on a field's mean squared residual (m/s² RMS, > 0), so a field fitted to noise-free
-    /// data does not make every error look large. Default 0.02.
+    /// Floor on a field's mean squared residual (m/s² RMS, > 0) with the local dynamics on
+    /// levels (`dynamics.regression = "level"`), so a field fitted to noise-free data does not
+    /// make every error look large. Default 0.02.
     pub residual_floor: f64,
+    /// The same floor with the local dynamics on differences (`"difference"`, the default
+    /// regression; m/s³ RMS, > 0). Default 1: with 0.02 the first episode's start made an
+    /// unchanged sarcos7 re-adapt (`docs/decisions.md`, D-adapt26).
+    pub residual_floor_difference: f64,
     /// Forgetting factor per sample of the local dynamics at full strength and activation 1, in
     /// (0, 1]. Default 0.995: a memory of about 200 samples (0.4 s at 500 Hz).
     pub dynamics_forgetting: f64,
@@ -63,6 +68,28 @@ pub struct AdaptationConfig {
     /// detected (in [0, 1]). Default 0: it learns at the re-adaptation's strength, and stops
     /// when the local dynamics fit again.
     pub load_floor: f64,
+    /// What the error ratio compares (see [`AdaptationSource`]). Default `dynamics`.
+    pub signal: AdaptationSource,
+    /// Floor on a local controller's mean squared residual for the `command` signal, in N·m
+    /// RMS (positive), so a controller fitted to nearly noise-free targets does not make every
+    /// error look large. Default 0.05.
+    pub command_floor: f64,
+}
+
+/// Which prediction error the re-adaptation's level is made of (`docs/learner.md`,
+/// "Re-adaptation").
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum AdaptationSource {
+    /// The local dynamics' prediction of their regression target (`ẍ`, or `Δẍ/Δt` in the
+    /// difference form) over their own fit residual. In the difference form a change that is
+    /// mostly an offset of `ẍ` (a payload's gravity) cancels.
+    #[default]
+    Dynamics,
+    /// The local controllers' prediction of their hindsight target (`u − u0 − c` for the
+    /// measured `ẍ`, N·m) over their own reward-weighted fit residual: a level in torque, so a
+    /// payload's gravity shows, and it falls once the load correction `c` holds it.
+    Command,
 }
 
 impl Default for AdaptationConfig {
@@ -74,6 +101,7 @@ impl Default for AdaptationConfig {
             on_ratio: 4.0,
             full_ratio: 16.0,
             residual_floor: 0.02,
+            residual_floor_difference: 1.0,
             dynamics_forgetting: 0.995,
             controller_forgetting: 0.999,
             release_seconds: 20.0,
@@ -83,6 +111,8 @@ impl Default for AdaptationConfig {
             load_time_constant: 1.0,
             freeze_partition: false,
             load_floor: 0.0,
+            signal: AdaptationSource::Dynamics,
+            command_floor: 0.05,
         }
     }
 }
@@ -115,6 +145,10 @@ impl AdaptationConfig {
                 self.residual_floor > 0.0 && self.residual_floor.is_finite(),
             ),
             (
+                "residual_floor_difference",
+                self.residual_floor_difference > 0.0 && self.residual_floor_difference.is_finite(),
+            ),
+            (
                 "release_seconds",
                 self.release_seconds > 0.0 && self.release_seconds.is_finite(),
             ),
@@ -129,6 +163,10 @@ impl AdaptationConfig {
                 self.trust_scale >= 1.0 && self.trust_scale.is_finite(),
             ),
             ("load_floor", (0.0..=1.0).contains(&self.load_floor)),
+            (
+                "command_floor",
+                self.command_floor > 0.0 && self.command_floor.is_finite(),
+            ),
         ];
         match checks.iter().find(|(_, ok)| !ok) {
             Some((what, _)) => Err(LearnError::InvalidConfig(format!(
@@ -161,5 +199,26 @@ mod tests {
             let e = c.validate().unwrap_err().to_string();
             assert!(e.contains("load_floor"), "{e}");
         }
+    }
+
+    /// The two floors of the error ratio are positive and finite, and refused by name
+    /// otherwise.
+    #[test]
+    fn the_floors_are_checked() {
+        for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            let c = AdaptationConfig {
+                residual_floor_difference: bad,
+                ..AdaptationConfig::default()
+            };
+            let e = c.validate().unwrap_err().to_string();
+            assert!(e.contains("residual_floor_difference"), "{e}");
+            let c = AdaptationConfig {
+                command_floor: bad,
+                ..AdaptationConfig::default()
+            };
+            let e = c.validate().unwrap_err().to_string();
+            assert!(e.contains("command_floor"), "{e}");
+        }
+        assert!(AdaptationConfig::default().validate().is_ok());
     }
 }

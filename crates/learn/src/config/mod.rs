@@ -7,7 +7,7 @@ mod groups;
 pub mod scaled;
 mod validate;
 
-pub use adaptation::AdaptationConfig;
+pub use adaptation::{AdaptationConfig, AdaptationSource};
 
 pub use groups::{
     ControllerConfig, CostKind, DynamicsConfig, DynamicsRegression, Experimental,

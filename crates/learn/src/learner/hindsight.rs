@@ -9,7 +9,7 @@ use super::nominal::nominal_into;
 use super::stats::{LearnerStats, Scratch};
 use super::{AdaptationSignal, LoadCorrection};
 use super::{Features, Learner, Models, State};
-use crate::config::{DynamicsRegression, LearnerConfig};
+use crate::config::{AdaptationSource, DynamicsRegression, LearnerConfig};
 use crate::error::Result;
 use crate::local::{LocalSpec, MStep, Pace};
 use lwpr::RfEvent;
@@ -353,20 +353,40 @@ impl Step<'_> {
             spread: self.cfg.controllers.step_spread,
         };
         let (lo, hi) = (&self.models.velocity_gain_lo, &self.models.velocity_gain_hi);
-        let floor = ad.residual_floor * ad.residual_floor;
+        let floor = if difference {
+            ad.residual_floor_difference * ad.residual_floor_difference
+        } else {
+            ad.residual_floor * ad.residual_floor
+        };
+        let command_floor = ad.command_floor * ad.command_floor;
+        let by_command = ad.signal == AdaptationSource::Command;
         let (mut se, mut sv) = (0.0, 0.0);
         for a in &ws.acts {
             let Some(local) = self.models.locals.map.get_mut(&a.id) else {
                 continue;
             };
             local.last_active = now;
+            f.controller_local(&mut ws.phi, q, &local.center);
+            if check && by_command && local.updates > 0 {
+                // The controller's prediction of its hindsight target, before it learns it.
+                local.rwr.mean_into(&ws.phi, &mut ws.ui)?;
+                let e: f64 = ws
+                    .target
+                    .iter()
+                    .zip(&ws.ui)
+                    .map(|(t, y)| (t - y).powi(2))
+                    .sum();
+                let v = local.rwr.mean_sq_residual().max(command_floor);
+                se += a.w * e;
+                sv += a.w * v * self.n as f64;
+            }
             if difference && (dyn_now || check) {
                 let c = &local.center;
                 f.dynamics_local_difference(&mut ws.phi_d, (q, q0), (u, u0), c, inv_dt);
             } else if dyn_now || check {
                 f.dynamics_local(&mut ws.phi_d, q, u, &local.center);
             }
-            if check && local.dynamics_updates > 0 {
+            if check && !by_command && local.dynamics_updates > 0 {
                 local.dynamics.mean_into(&ws.phi_d, &mut ws.y)?;
                 let x = &ws.xdd_target;
                 let e: f64 = x.iter().zip(&ws.y).map(|(x, y)| (x - y).powi(2)).sum();
@@ -387,7 +407,6 @@ impl Step<'_> {
                 };
                 local.dynamics.observe(&ws.phi_d, &ws.xdd_target, 0.0, w)?;
             }
-            f.controller_local(&mut ws.phi, q, &local.center);
             let r = if adapting { self.adapt.cost(r) } else { r };
             match local.observe(&ws.phi, &ws.target, r, a.w, update_every, pace)? {
                 Some(MStep::Done) => {

@@ -17,6 +17,8 @@
 //! | `load.rs` | the load correction of `u0` while re-adapting |
 
 mod adapt;
+#[cfg(test)]
+mod adapt_tests;
 mod command;
 mod cost;
 #[cfg(test)]
