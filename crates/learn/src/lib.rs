@@ -31,7 +31,7 @@ pub mod train;
 mod variant;
 
 pub use config::{
-    AdaptationConfig, ControllerConfig, CostKind, DynamicsConfig, DynamicsRegression,
+    AdaptationConfig, ControllerConfig, CostKind, CostMetric, DynamicsConfig, DynamicsRegression,
     ExplorationConfig, GravityConfig, GuardConfig, LearnerConfig, NoiseProcess, NominalConfig,
     PartitionConfig,
 };

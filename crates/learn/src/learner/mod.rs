@@ -33,6 +33,7 @@ mod inertia;
 #[cfg(test)]
 mod inertia_tests;
 mod load;
+mod metric;
 mod models;
 mod nominal;
 mod null_space;
