@@ -25,6 +25,7 @@ pub mod crba;
 mod data;
 pub mod energy;
 mod error;
+pub mod gimbal;
 pub mod inertia;
 pub mod jacobian;
 pub mod kinematics;

@@ -300,19 +300,24 @@ impl Setup {
     }
 
     /// An evaluator on `truth` (this robot, or one with a payload): its own simulator, the
-    /// training's task gains, [`Setup::eval_periods`] evaluated periods after a warm-up one.
+    /// training's task gains, [`Setup::eval_periods`] evaluated periods after a warm-up one;
+    /// eq. 7's metric is the learner's cost metric (`controllers.metric`: `N = I`, or `M⁻¹`).
     ///
     /// # Errors
     /// A model that does not fit the home posture.
     pub fn evaluator(&self, truth: &Model) -> Result<Evaluator> {
-        Ok(Evaluator::new(
+        let mut ev = Evaluator::new(
             truth.clone(),
             self.sim.clone(),
             self.traj.clone(),
             self.home.clone(),
             self.train.gains,
             self.eval_periods,
-        )?)
+        )?;
+        if self.learner.controllers.metric == osrl_learn::CostMetric::InverseInertia {
+            ev.set_metric(osrl_control::MetricKind::InverseMass)?;
+        }
+        Ok(ev)
     }
 
     /// Trains a fresh learner on a simulated `truth` robot (this set-up's simulator, its noise

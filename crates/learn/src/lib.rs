@@ -31,7 +31,7 @@ pub mod train;
 mod variant;
 
 pub use config::{
-    AdaptationConfig, AdaptationSource, ControllerConfig, CostKind, DynamicsConfig,
+    AdaptationConfig, AdaptationSource, ControllerConfig, CostKind, CostMetric, DynamicsConfig,
     DynamicsRegression, ExplorationConfig, GravityConfig, GuardConfig, LearnerConfig, NoiseProcess,
     NominalConfig, PartitionConfig,
 };

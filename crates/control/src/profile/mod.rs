@@ -84,8 +84,12 @@ pub fn load_robot(robot: &str, profile: &RobotProfile) -> Result<Model> {
 /// # Errors
 /// [`crate::ControlError::Profile`] naming the field: a wrong length, a non-finite value, a
 /// posture outside the joint limits, a non-positive torque limit or scalar; a path that is not
-/// reachable or feasible; an arm for which no home posture and path work (with the reason).
+/// reachable or feasible; an arm for which no home posture and path work (with the reason);
+/// [`crate::ControlError::Dynamics`] for a model the simulator refuses (a gimbal
+/// inside the joint limits, `osrl_dynamics::gimbal`).
 pub fn resolve(model: &Model, given: &RobotProfile) -> Result<Profiled> {
+    // Before the home search: its eq. 7 runs would refuse the model for every candidate.
+    osrl_dynamics::gimbal::check(model)?;
     let file = model
         .spec()
         .urdf

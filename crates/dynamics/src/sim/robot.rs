@@ -43,9 +43,13 @@ pub struct SimRobot {
 }
 
 impl SimRobot {
-    /// A robot at `model.spec().q_start`, at rest, with zero command. Fails on an invalid config.
+    /// A robot at `model.spec().q_start`, at rest, with zero command. Fails on an invalid config
+    /// or a model the simulation cannot follow: a ball joint written as three angles whose gimbal
+    /// lock lies inside the limits ([`crate::gimbal::check`]), or friction too stiff for an
+    /// explicit integrator.
     pub fn new(model: Model, cfg: SimConfig) -> Result<Self> {
         cfg.validate()?;
+        crate::gimbal::check(&model)?;
         let (n, m) = (model.nq(), model.task_dim());
         let z = DVector::zeros(n);
         let meas = Measurement {
@@ -110,8 +114,8 @@ impl SimRobot {
     /// robot.
     ///
     /// # Errors
-    /// A model with another number of joints or task dimensions, or friction too stiff for an
-    /// explicit integrator; nothing is changed.
+    /// A model with another number of joints or task dimensions, a gimbal inside its limits
+    /// ([`crate::gimbal`]), or friction too stiff for an explicit integrator; nothing is changed.
     pub fn set_model(&mut self, model: Model) -> Result<()> {
         if model.nq() != self.model.nq() || model.task_dim() != self.model.task_dim() {
             return Err(DynamicsError::InvalidModel(format!(
@@ -122,6 +126,7 @@ impl SimRobot {
                 self.model.task_dim()
             )));
         }
+        crate::gimbal::check(&model)?;
         let old = (
             std::mem::replace(&mut self.data, model.data()),
             std::mem::replace(&mut self.friction, FrictionStep::new(&model)),

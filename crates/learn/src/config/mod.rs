@@ -10,7 +10,7 @@ mod validate;
 pub use adaptation::{AdaptationConfig, AdaptationSource};
 
 pub use groups::{
-    ControllerConfig, CostKind, DynamicsConfig, DynamicsRegression, Experimental,
+    ControllerConfig, CostKind, CostMetric, DynamicsConfig, DynamicsRegression, Experimental,
     ExplorationConfig, GravityConfig, GuardConfig, NoiseProcess, NominalConfig, PartitionConfig,
 };
 use serde::{Deserialize, Serialize};

@@ -78,6 +78,23 @@ impl Evaluator {
         })
     }
 
+    /// Compares the commands with eq. 7 under the metric `metric` instead of `N = I` (for a
+    /// learner whose cost uses it, `controllers.metric`).
+    ///
+    /// # Errors
+    /// The analytical controller's.
+    pub fn set_metric(&mut self, metric: osrl_control::MetricKind) -> Result<()> {
+        self.osc = Osc::new(
+            self.sim.model().clone(),
+            OscConfig {
+                gains: self.gains,
+                metric,
+                ..OscConfig::default()
+            },
+        )?;
+        Ok(())
+    }
+
     /// Runs `learner` (no exploration, no learning) from home for `self.seconds` through
     /// [`osrl_control::drive`], comparing each command with `u*` at the same state.
     ///

@@ -2,23 +2,42 @@
 //! the paper's `r = ‖u − u0‖²` (`N = I`) or its avoidable part `‖(I − Â⁺Â)(u − u0)‖²`, and the
 //! target `u − u0` moved towards the task-space part of itself.
 
-use super::null_space::{null_space_cost, project_null};
+use super::metric::{null_space_cost_in, project_null_in, Metric};
 use super::stats::Scratch;
 use crate::config::{CostKind, LearnerConfig};
 
 /// The cost `r` of the sample in `ws.du = u − u0` (0 without reward weighting); the null-space
 /// cost needs `Â` (`known`) in `ws.a_hat` and falls back to the full cost without it.
-pub(crate) fn cost(cfg: &LearnerConfig, known: bool, ws: &mut Scratch) -> f64 {
+pub(crate) fn cost(
+    cfg: &LearnerConfig,
+    known: bool,
+    metric: Option<&Metric>,
+    ws: &mut Scratch,
+) -> f64 {
     let c = &cfg.controllers;
     if !c.reward_weighting {
         return 0.0;
     }
-    let full: f64 = ws.du.iter().map(|v| v * v).sum();
+    let full: f64 = match metric {
+        None => ws.du.iter().map(|v| v * v).sum(),
+        Some(mt) => mt.norm_squared(&ws.du, &mut ws.v_n),
+    };
     match c.cost {
         CostKind::Full => full,
         CostKind::NullSpace if known => {
             let m = ws.y.len();
-            null_space_cost(&ws.a_hat, &ws.du, m, &mut ws.y, &mut ws.s).unwrap_or(full)
+            let (a, du) = (&ws.a_hat, &ws.du);
+            null_space_cost_in(
+                metric,
+                a,
+                du,
+                m,
+                &mut ws.y,
+                &mut ws.s,
+                &mut ws.a_n,
+                &mut ws.v_n,
+            )
+            .unwrap_or(full)
         }
         CostKind::NullSpace => full,
     }
@@ -26,13 +45,21 @@ pub(crate) fn cost(cfg: &LearnerConfig, known: bool, ws: &mut Scratch) -> f64 {
 
 /// Hindsight shrinkage: `target ← target − κ (I − Â⁺Â)(u − u0)` (with `ws.du = u − u0` and `Â`
 /// in `ws.a_hat`): the same measured `ẍ` to first order, at a lower cost. `κ = 0`: unchanged.
-pub(crate) fn shrink_target(kappa: f64, ws: &mut Scratch) {
+pub(crate) fn shrink_target(kappa: f64, metric: Option<&Metric>, ws: &mut Scratch) {
     if kappa <= 0.0 {
         return;
     }
     let m = ws.y.len();
     ws.z.copy_from_slice(&ws.du);
-    if project_null(&ws.a_hat, &mut ws.z, m, &mut ws.y, &mut ws.s) {
+    if project_null_in(
+        metric,
+        &ws.a_hat,
+        &mut ws.z,
+        m,
+        &mut ws.y,
+        &mut ws.s,
+        &mut ws.a_n,
+    ) {
         for (t, z) in ws.target.iter_mut().zip(&ws.z) {
             *t -= kappa * z;
         }
@@ -60,7 +87,7 @@ mod tests {
         let before: Vec<f64> = (0..2)
             .map(|k| (0..3).map(|j| ws.a_hat[k * 3 + j] * ws.target[j]).sum())
             .collect();
-        shrink_target(1.0, &mut ws);
+        shrink_target(1.0, None, &mut ws);
         for (k, b) in before.iter().enumerate() {
             let after: f64 = (0..3).map(|j| ws.a_hat[k * 3 + j] * ws.target[j]).sum();
             assert!(
@@ -73,7 +100,7 @@ mod tests {
         assert!(n2(&ws.target) < n2(&ws.du));
         // κ = 0 is the paper's plain relabelling.
         let mut ws0 = scratch();
-        shrink_target(0.0, &mut ws0);
+        shrink_target(0.0, None, &mut ws0);
         assert_eq!(ws0.target, ws0.du);
     }
 
@@ -90,14 +117,15 @@ mod tests {
                 ..cfg.clone()
             },
             true,
+            None,
             &mut ws,
         );
-        let null = cost(&cfg, true, &mut ws);
+        let null = cost(&cfg, true, None, &mut ws);
         assert!((full - (0.16 + 1.21 + 4.0)).abs() < 1e-12);
         assert!(null > 0.0 && null < full, "{null} vs {full}");
         // Without Â the null-space cost is the full one; without reward weighting it is 0.
-        assert_eq!(cost(&cfg, false, &mut ws), full);
+        assert_eq!(cost(&cfg, false, None, &mut ws), full);
         cfg.controllers.reward_weighting = false;
-        assert_eq!(cost(&cfg, true, &mut ws), 0.0);
+        assert_eq!(cost(&cfg, true, None, &mut ws), 0.0);
     }
 }

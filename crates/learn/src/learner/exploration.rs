@@ -6,7 +6,7 @@
 //! (a torque rate bounded by construction, as in state-dependent exploration resampled every few
 //! hundred milliseconds).
 
-use super::null_space::project_null;
+use super::metric::project_null_in;
 use super::stats::Scratch;
 use super::{Features, Models};
 use crate::config::{LearnerConfig, NoiseProcess};
@@ -214,7 +214,18 @@ fn add_noise<R: Rng + ?Sized>(
             *z = sigma.min(ns_cap * scale) * e;
         }
         // z − Âᵀ (Â Âᵀ)⁻¹ Â z: no first-order effect on the task.
-        if known && project_null(&ws.a_hat, &mut ws.du, m, &mut ws.y, &mut ws.s) {
+        let metric = models.metric.as_ref();
+        if known
+            && project_null_in(
+                metric,
+                &ws.a_hat,
+                &mut ws.du,
+                m,
+                &mut ws.y,
+                &mut ws.s,
+                &mut ws.a_n,
+            )
+        {
             for (v, z) in u.iter_mut().zip(&ws.du) {
                 *v += z;
             }

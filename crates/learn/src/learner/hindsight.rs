@@ -97,7 +97,7 @@ impl Step<'_> {
         self.follow_partition(cur)?;
         let known = self.relabel(cur)?;
         self.learn_load(cur)?;
-        let r = cost(self.cfg, known, self.ws);
+        let r = cost(self.cfg, known, self.models.metric.as_ref(), self.ws);
         self.update_locals(prev, cur, r)
     }
 
@@ -266,7 +266,8 @@ impl Step<'_> {
         }
         let known = models.blended_gain(self.features, &ws.acts, q, &mut ws.a_hat);
         if known && residual {
-            shrink_target(self.cfg.controllers.null_space_shrink, ws);
+            let kappa = self.cfg.controllers.null_space_shrink;
+            shrink_target(kappa, models.metric.as_ref(), ws);
         }
         Ok(known)
     }

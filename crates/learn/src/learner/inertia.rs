@@ -15,14 +15,31 @@ use osrl_dynamics::Measurement;
 /// `(M⁻¹)_jj` per joint from the warm-up `warm` (period `dt`); NaN where the fit fails or the
 /// estimate is not positive (no bound there).
 pub(crate) fn inverse_inertia_diagonal(warm: &[Measurement], dt: f64) -> Vec<f64> {
-    let Some(first) = warm.first() else {
-        return Vec::new();
+    let n = warm.first().map_or(0, |w| w.q.len());
+    let Some(b) = inverse_inertia_matrix(warm, dt) else {
+        return vec![f64::NAN; n];
     };
+    (0..n)
+        .map(|j| {
+            let v = b[(j, j)];
+            if v.is_finite() && v > 0.0 {
+                v
+            } else {
+                f64::NAN
+            }
+        })
+        .collect()
+}
+
+/// The whole `B = M⁻¹` (n×n, `B_ij = ∂q̈_i/∂u_j`, not symmetrised) from the same fit; `None`
+/// where there are too few samples or the fit is singular.
+pub(crate) fn inverse_inertia_matrix(warm: &[Measurement], dt: f64) -> Option<DMatrix<f64>> {
+    let first = warm.first()?;
     let n = first.q.len();
     let p = 3 * n + 1;
     let k = warm.len().saturating_sub(1);
     if k < 2 * p {
-        return vec![f64::NAN; n];
+        return None;
     }
     let mut x = DMatrix::zeros(k, p);
     let mut y = DMatrix::zeros(k, n);
@@ -48,20 +65,9 @@ pub(crate) fn inverse_inertia_diagonal(warm: &[Measurement], dt: f64) -> Vec<f64
     for c in 0..p {
         gram[(c, c)] += 1e-9 * k as f64;
     }
-    let Some(chol) = gram.cholesky() else {
-        return vec![f64::NAN; n];
-    };
+    let chol = gram.cholesky()?;
     let coef = chol.solve(&(x.transpose() * &y));
-    (0..n)
-        .map(|j| {
-            let b = coef[(j, j)] / scale[j];
-            if b.is_finite() && b > 0.0 {
-                b
-            } else {
-                f64::NAN
-            }
-        })
-        .collect()
+    Some(DMatrix::from_fn(n, n, |i, j| coef[(j, i)] / scale[j]))
 }
 
 /// Bounds `[lo, hi]` of the learned velocity gain `β_{q̇_j, j}` of each joint: `hi = K_D,j` (no

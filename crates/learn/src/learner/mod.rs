@@ -35,6 +35,7 @@ mod inertia;
 #[cfg(test)]
 mod inertia_tests;
 mod load;
+mod metric;
 mod models;
 mod nominal;
 mod null_space;

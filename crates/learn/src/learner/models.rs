@@ -29,6 +29,10 @@ pub(crate) struct Models {
     /// Buffer of the static model's `ĝ` while blending (`nominal.rs`).
     #[serde(skip)]
     pub g_static: Vec<f64>,
+    /// The cost's metric `N` (`controllers.metric`, `metric.rs`), from the warm-up; `None`:
+    /// `N = I` (also after loading: it is not saved).
+    #[serde(skip)]
+    pub metric: Option<super::metric::Metric>,
 }
 
 /// Standard deviation of `f` over the warm-up, at least 1e-3.
@@ -95,7 +99,14 @@ impl Models {
         } else {
             (Vec::new(), Vec::new())
         };
+        let metric = match cfg.controllers.metric {
+            crate::config::CostMetric::Identity => None,
+            crate::config::CostMetric::InverseInertia => {
+                super::metric::Metric::inverse_inertia(warm, dt)
+            }
+        };
         Ok(Self {
+            metric,
             velocity_gain_lo,
             velocity_gain_hi,
             gravity,

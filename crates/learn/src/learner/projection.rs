@@ -3,7 +3,7 @@
 //! blended `Â`, `ū ← ū − κ_c (I − Â⁺Â) ū` — the same task acceleration to first order, in the
 //! minimum-norm form of eq. 7's `u* − u0`.
 
-use super::null_space::project_null;
+use super::metric::project_null_in;
 use super::{Learner, State};
 
 impl Learner {
@@ -24,7 +24,16 @@ impl Learner {
         }
         ws.z.copy_from_slice(u);
         let m = ws.y.len();
-        if project_null(&ws.a_hat, &mut ws.z, m, &mut ws.y, &mut ws.s) {
+        let metric = models.metric.as_ref();
+        if project_null_in(
+            metric,
+            &ws.a_hat,
+            &mut ws.z,
+            m,
+            &mut ws.y,
+            &mut ws.s,
+            &mut ws.a_n,
+        ) {
             for (v, z) in u.iter_mut().zip(&ws.z) {
                 *v -= kc * z;
             }

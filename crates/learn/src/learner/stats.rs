@@ -56,6 +56,9 @@ pub(crate) struct Scratch {
     pub a_hat: Vec<f64>,
     pub y: Vec<f64>,
     pub s: Vec<f64>,
+    /// `Â` and a joint vector in the cost's metric (`metric.rs`).
+    pub a_n: Vec<f64>,
+    pub v_n: Vec<f64>,
     /// The local dynamics' regression target: `ẍ`, or `Δẍ/Δt` in the difference form.
     pub xdd_target: Vec<f64>,
 }
@@ -80,6 +83,8 @@ impl Scratch {
             a_hat: vec![0.0; m * n],
             y: vec![0.0; m],
             s: vec![0.0; m * m],
+            a_n: vec![0.0; m * n],
+            v_n: vec![0.0; n],
             xdd_target: vec![0.0; m],
         }
     }

@@ -84,6 +84,7 @@ pub fn train_simulated(
     let (n, dt) = (truth.nq(), sim_cfg.control_period);
     let mut sim = osrl_dynamics::SimRobot::new(truth.clone(), sim_cfg)?;
     sim.reset(home, &vec![0.0; n])?;
+    let inverse_inertia = lcfg.controllers.metric == crate::config::CostMetric::InverseInertia;
     let mut learner = Learner::new(n, truth.task_dim(), dt, lcfg)?;
     let mut ev = crate::eval::Evaluator::new(
         truth.clone(),
@@ -93,6 +94,9 @@ pub fn train_simulated(
         cfg.gains,
         eval_periods,
     )?;
+    if inverse_inertia {
+        ev.set_metric(osrl_control::MetricKind::InverseMass)?;
+    }
     let axes = truth.task_axes();
     let mut evaluate = |l: &mut Learner| ev.evaluate(l);
     let summary = Trainer::new(

@@ -1,0 +1,185 @@
+//! The metric `N` of the cost `(u − u0)ᵀ N (u − u0)` and of the null space of `Â`
+//! (`controllers.metric`, `docs/decisions.md` D-arms28c). `N = I` is the paper's; with
+//! `N = B̂ ≈ M⁻¹`, measured in the warm-up (`inertia.rs`, the least-squares fit of `q̈` on
+//! `[u, q, q̇, 1]`), the null space of `Â = J M⁻¹` in the `N`-metric is that of `J` in the joint
+//! velocities — the dynamically consistent split of eq. 7 with `N = M⁻¹` — so the task is not
+//! carried by spinning the light wrist joints, whose torques are the cheapest in `N = I`.
+//!
+//! With `N = L Lᵀ` (Cholesky), `ũ = Lᵀ u` and `Ã = Â L⁻ᵀ` turn the `N`-metric into the Euclidean
+//! one (`ũᵀ ũ = uᵀ N u`, `Ã ũ = Â u`), so the Euclidean null-space algebra (`null_space.rs`)
+//! applies unchanged. The measurement only: the robot's model is not read.
+
+use super::inertia::inverse_inertia_matrix;
+use super::null_space::{null_space_cost, project_null};
+use nalgebra::DMatrix;
+use osrl_dynamics::Measurement;
+
+/// `N = L Lᵀ` by its lower Cholesky factor `L` (n×n).
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Metric {
+    l: DMatrix<f64>,
+}
+
+impl Metric {
+    /// `N = (B̂ + B̂ᵀ)/2` from the warm-up `warm` (period `dt`); `None` when the fit fails or
+    /// the symmetrised estimate is not positive definite (the learner then uses `N = I`).
+    pub fn inverse_inertia(warm: &[Measurement], dt: f64) -> Option<Self> {
+        let b = inverse_inertia_matrix(warm, dt)?;
+        let sym = (&b + b.transpose()) * 0.5;
+        Self::from_matrix(sym)
+    }
+
+    /// The metric of a symmetric positive-definite `n` (`None` otherwise).
+    pub fn from_matrix(n: DMatrix<f64>) -> Option<Self> {
+        if !n.iter().all(|v| v.is_finite()) {
+            return None;
+        }
+        Some(Self {
+            l: n.cholesky()?.l(),
+        })
+    }
+
+    /// `uᵀ N u = ‖Lᵀ u‖²`; `v` (n) is scratch.
+    pub fn norm_squared(&self, u: &[f64], v: &mut [f64]) -> f64 {
+        v.copy_from_slice(u);
+        self.lt_mul(v);
+        v.iter().map(|x| x * x).sum()
+    }
+
+    fn n(&self) -> usize {
+        self.l.nrows()
+    }
+
+    /// `Â ← Â L⁻ᵀ` in place (`a`: m×n row-major): each row `r` becomes `L⁻¹ r`.
+    fn gain(&self, a: &mut [f64]) {
+        let n = self.n();
+        for row in a.chunks_exact_mut(n) {
+            for i in 0..n {
+                let v = (0..i).fold(row[i], |v, k| v - self.l[(i, k)] * row[k]);
+                row[i] = v / self.l[(i, i)];
+            }
+        }
+    }
+
+    /// `v ← Lᵀ v`.
+    fn lt_mul(&self, v: &mut [f64]) {
+        let n = self.n();
+        for i in 0..n {
+            v[i] = (i..n).map(|k| self.l[(k, i)] * v[k]).sum();
+        }
+    }
+
+    /// `v ← L⁻ᵀ v`.
+    fn lt_solve(&self, v: &mut [f64]) {
+        let n = self.n();
+        for i in (0..n).rev() {
+            let s = (i + 1..n).fold(v[i], |s, k| s - self.l[(k, i)] * v[k]);
+            v[i] = s / self.l[(i, i)];
+        }
+    }
+}
+
+/// `‖du‖²_N` minus its task part: [`null_space_cost`] in the metric (Euclidean without one).
+/// `a_n` (m×n) and `v_n` (n) are scratch.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn null_space_cost_in(
+    metric: Option<&Metric>,
+    a: &[f64],
+    du: &[f64],
+    m: usize,
+    y: &mut [f64],
+    s: &mut [f64],
+    a_n: &mut [f64],
+    v_n: &mut [f64],
+) -> Option<f64> {
+    let Some(metric) = metric else {
+        return null_space_cost(a, du, m, y, s);
+    };
+    a_n.copy_from_slice(a);
+    metric.gain(a_n);
+    v_n.copy_from_slice(du);
+    metric.lt_mul(v_n);
+    null_space_cost(a_n, v_n, m, y, s)
+}
+
+/// `z ← z − N⁻¹ Âᵀ (Â N⁻¹ Âᵀ)⁻¹ Â z`: [`project_null`] in the metric; `false` (z unchanged up
+/// to round-off) if `Â N⁻¹ Âᵀ` is singular. `a_n` (m×n) is scratch.
+pub(crate) fn project_null_in(
+    metric: Option<&Metric>,
+    a: &[f64],
+    z: &mut [f64],
+    m: usize,
+    y: &mut [f64],
+    s: &mut [f64],
+    a_n: &mut [f64],
+) -> bool {
+    let Some(metric) = metric else {
+        return project_null(a, z, m, y, s);
+    };
+    a_n.copy_from_slice(a);
+    metric.gain(a_n);
+    metric.lt_mul(z);
+    let ok = project_null(a_n, z, m, y, s);
+    metric.lt_solve(z);
+    ok
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{null_space_cost_in, project_null_in, Metric};
+    use nalgebra::{DMatrix, DVector};
+
+    /// The projection in the metric removes exactly the task part (`Â z = 0` after it), leaves
+    /// a vector `N`-orthogonal to the range of `N⁻¹ Âᵀ`, and its cost is the `N`-norm of that
+    /// part; with `N = I` both are the Euclidean ones.
+    #[test]
+    fn the_metric_projection_and_cost_follow_their_definitions() {
+        let (n, m) = (3, 2);
+        let a = [1.0, -2.0, 0.5, 0.3, 0.7, -1.7];
+        let nm = DMatrix::from_row_slice(3, 3, &[2.0, 0.3, -0.1, 0.3, 1.0, 0.2, -0.1, 0.2, 0.5]);
+        let metric = Metric::from_matrix(nm.clone()).unwrap();
+        let du = [0.4, -1.1, 2.0];
+        let (mut y, mut s, mut an, mut vn) =
+            (vec![0.0; m], vec![0.0; m * m], vec![0.0; 6], [0.0; 3]);
+        let mut z = du;
+        assert!(project_null_in(
+            Some(&metric),
+            &a,
+            &mut z,
+            m,
+            &mut y,
+            &mut s,
+            &mut an
+        ));
+        let am = DMatrix::from_row_slice(m, n, &a);
+        let zv = DVector::from_column_slice(&z);
+        assert!((&am * &zv).amax() < 1e-12, "no task part left");
+        // The removed part N⁻¹ Âᵀ λ is N-orthogonal to what is left.
+        let removed = DVector::from_column_slice(&du) - &zv;
+        assert!((zv.transpose() * &nm * &removed)[(0, 0)].abs() < 1e-12);
+        let r = null_space_cost_in(Some(&metric), &a, &du, m, &mut y, &mut s, &mut an, &mut vn)
+            .unwrap();
+        let want = (zv.transpose() * &nm * &zv)[(0, 0)];
+        assert!((r - want).abs() < 1e-12, "{r} vs {want}");
+        // The identity metric is the Euclidean algebra, to the bit.
+        let id = Metric::from_matrix(DMatrix::identity(3, 3)).unwrap();
+        let (mut z1, mut z2) = (du, du);
+        project_null_in(Some(&id), &a, &mut z1, m, &mut y, &mut s, &mut an);
+        project_null_in(None, &a, &mut z2, m, &mut y, &mut s, &mut an);
+        assert!(z1.iter().zip(&z2).all(|(p, q)| (p - q).abs() < 1e-14));
+    }
+
+    /// From the fixture arm's babbled warm-up, `N = B̂` is positive definite and its diagonal is
+    /// the measured `(M⁻¹)_jj`, within 20 % of the true one (as the damping bound's).
+    #[test]
+    fn the_warm_up_gives_a_positive_definite_inverse_inertia() {
+        let (warm, truth) = crate::learner::fixture::warm_up_with_inverse_inertia(1000);
+        let metric = Metric::inverse_inertia(&warm, 0.002).expect("positive definite");
+        let n = &metric.l * metric.l.transpose();
+        let diag = super::super::inertia::inverse_inertia_diagonal(&warm, 0.002);
+        for j in 0..3 {
+            assert!((n[(j, j)] - diag[j]).abs() < 1e-9 * diag[j]);
+            assert!((n[(j, j)] - truth[j]).abs() < 0.2 * truth[j], "joint {j}");
+        }
+    }
+}
