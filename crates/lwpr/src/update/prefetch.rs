@@ -6,7 +6,10 @@
 //!
 //! Three stages, because each level's addresses are in the level above: RF `a + 3`'s [`Rf`]
 //! and its rows of `centers`, `ms`, `ds`; RF `a + 2`'s vectors and its [`Pls`] records (read
-//! from the `Rf` fetched one RF earlier); RF `a + 1`'s PLS vectors.
+//! from the `Rf` fetched one RF earlier); RF `a + 1`'s PLS vectors. The activation pass
+//! (`activation.rs`) fetches, for a diagonal metric, the centre and metric rows
+//! [`PASS_AHEAD`] RFs ahead of the one it measures (the hardware's stream prefetch alone left
+//! ≈ 4 % more time per update).
 
 use crate::pls::Pls;
 use crate::rf::{Rf, SubModel};
@@ -62,9 +65,12 @@ fn pls(out: &Pls) {
     }
 }
 
+/// How many RFs ahead the activation pass prefetches centres and metrics.
+pub(crate) const PASS_AHEAD: usize = 8;
+
 /// Prefetches every cache line of `v` into the L1 cache (x86-64; nothing elsewhere).
 #[inline(always)]
-fn lines<T>(v: &[T]) {
+pub(crate) fn lines<T>(v: &[T]) {
     #[cfg(target_arch = "x86_64")]
     {
         use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
