@@ -143,8 +143,9 @@ fn column<S: Subspace>(links: &[Link], poses: &[Pose], ic: &Inertia, i: usize, c
     }
 }
 
-/// [`pass`] for `N` joints, `N` a constant: the same operations on the same values, both
-/// triangles written in the walk (every index known, no mirror pass).
+/// [`pass`] for `N ≤ 8` joints, `N` a constant: the same operations on the same values, both
+/// triangles written in the walk (every index known, no mirror pass), each column a separate
+/// copy ([`column_n`]) so that every walk is unrolled.
 #[inline(always)]
 fn pass_n<S: Subspace, const N: usize>(model: &Model, data: &mut Data) {
     let links: &[Link; N] = model.links().try_into().expect("N joints");
@@ -152,19 +153,36 @@ fn pass_n<S: Subspace, const N: usize>(model: &Model, data: &mut Data) {
     let ics: &mut [Inertia; N] = (&mut data.ic[..]).try_into().expect("N joints");
     let mass: &mut [f64] = &mut data.mass.as_mut_slice()[..N * N];
     let mut ic = links[N - 1].inertia;
-    for i in (0..N).rev() {
-        if i + 1 < N {
-            ic = links[i].inertia.add(&ic.to_parent(&poses[i + 1]));
-        }
-        ics[i] = ic;
-        let mut f = S::column(&links[i], &ic);
-        mass[i * N + i] = S::project(&links[i], &f);
-        for j in (0..i).rev() {
-            f = poses[j + 1].force_to_parent(&f);
-            let m = S::project(&links[j], &f);
-            mass[i * N + j] = m;
-            mass[j * N + i] = m;
-        }
+    macro_rules! columns_down {
+        ($($i:literal)*) => {$(
+            if $i < N {
+                column_n::<S, N, $i>(links, poses, &mut ic, ics, mass);
+            }
+        )*};
+    }
+    columns_down!(7 6 5 4 3 2 1 0);
+}
+
+/// Column `I` of [`pass_n`]: `ic` becomes `I^c_I`, then the walk to the base.
+#[inline(always)]
+fn column_n<S: Subspace, const N: usize, const I: usize>(
+    links: &[Link; N],
+    poses: &[Pose; N],
+    ic: &mut Inertia,
+    ics: &mut [Inertia; N],
+    mass: &mut [f64],
+) {
+    if I + 1 < N {
+        *ic = links[I].inertia.add(&ic.to_parent(&poses[I + 1]));
+    }
+    ics[I] = *ic;
+    let mut f = S::column(&links[I], ic);
+    mass[I * N + I] = S::project(&links[I], &f);
+    for j in (0..I).rev() {
+        f = poses[j + 1].force_to_parent(&f);
+        let m = S::project(&links[j], &f);
+        mass[I * N + j] = m;
+        mass[j * N + I] = m;
     }
 }
 

@@ -1,7 +1,8 @@
 //! The preallocated workspace of the dynamics algorithms: one per thread, reused for every call.
 
 use crate::inertia::{ArticulatedInertia, Inertia};
-use crate::model::Model;
+use crate::model::{Link, Model};
+use crate::sincos;
 use crate::spatial::{rotate_about_unit, Force, Motion, Pose};
 use nalgebra::{DMatrix, DVector, Matrix3xX, Vector3};
 
@@ -30,6 +31,9 @@ pub struct Data {
     pub(crate) u_lin: Vec<Vector3<f64>>,
     pub(crate) d_inv: Vec<f64>,
     pub(crate) u: Vec<f64>,
+    /// `sin q_i`, `cos q_i` of the last joint poses, padded to a multiple of 4 joints.
+    pub(crate) sin_q: Vec<f64>,
+    pub(crate) cos_q: Vec<f64>,
     /// Joint torques of the last [`crate::rnea`] call (N·m).
     pub tau: DVector<f64>,
     /// Joint accelerations of the last [`crate::aba`] / [`crate::forward_dynamics`] call (rad/s²).
@@ -70,6 +74,8 @@ impl Data {
             u_lin: vec![Vector3::zeros(); n],
             d_inv: vec![0.0; n],
             u: vec![0.0; n],
+            sin_q: vec![0.0; n.next_multiple_of(4)],
+            cos_q: vec![0.0; n.next_multiple_of(4)],
             tau: DVector::zeros(n),
             qdd: DVector::zeros(n),
             mass: DMatrix::zeros(n, n),
@@ -89,29 +95,34 @@ impl Data {
     }
 }
 
-/// Joint poses `ᵖX_i(q_i)` ([`crate::Link::joint_pose`]) for every link; without testing each
-/// axis when every joint is revolute about one `±e_k` ([`Model::revolute_axis`]).
+/// Joint poses `ᵖX_i(q_i)` ([`crate::Link::joint_pose`]) for every link, the sines and cosines
+/// four joints at a time ([`sincos::sin_cos_slices`]); without testing each axis when every
+/// joint is revolute about one `±e_k` ([`Model::revolute_axis`]).
 #[inline]
 pub(crate) fn update_joint_poses(model: &Model, data: &mut Data, q: &[f64]) {
+    sincos::sin_cos_slices(q, &mut data.sin_q, &mut data.cos_q);
     match model.revolute_axis() {
-        Some(0) => unit_axis_poses::<0>(model, data, q),
-        Some(1) => unit_axis_poses::<1>(model, data, q),
-        Some(2) => unit_axis_poses::<2>(model, data, q),
-        _ => {
-            for ((x, l), &qi) in data.joint_pose.iter_mut().zip(model.links()).zip(q) {
-                *x = l.joint_pose(qi);
-            }
-        }
+        Some(0) => poses(model, data, q, unit_axis_pose::<0>),
+        Some(1) => poses(model, data, q, unit_axis_pose::<1>),
+        Some(2) => poses(model, data, q, unit_axis_pose::<2>),
+        _ => poses(model, data, q, Link::joint_pose_sc),
     }
 }
 
-/// [`update_joint_poses`] for joints all revolute about `±e_K`.
+/// `data.joint_pose[i] = pose(link_i, q_i, (sin q_i, cos q_i))`.
 #[inline(always)]
-fn unit_axis_poses<const K: usize>(model: &Model, data: &mut Data, q: &[f64]) {
-    for ((x, l), &qi) in data.joint_pose.iter_mut().zip(model.links()).zip(q) {
-        *x = Pose::new(
-            rotate_about_unit::<K>(&l.origin.rot, l.axis[K], qi),
-            l.origin.trans,
-        );
+fn poses(model: &Model, data: &mut Data, q: &[f64], pose: impl Fn(&Link, f64, (f64, f64)) -> Pose) {
+    let sc = data.sin_q.iter().zip(&data.cos_q);
+    for (((x, l), &qi), (&s, &c)) in data.joint_pose.iter_mut().zip(model.links()).zip(q).zip(sc) {
+        *x = pose(l, qi, (s, c));
     }
+}
+
+/// [`Link::joint_pose`] for a joint revolute about `±e_K`.
+#[inline(always)]
+fn unit_axis_pose<const K: usize>(l: &Link, _q: f64, sc: (f64, f64)) -> Pose {
+    Pose::new(
+        rotate_about_unit::<K>(&l.origin.rot, l.axis[K], sc),
+        l.origin.trans,
+    )
 }

@@ -34,6 +34,7 @@ pub mod profile;
 pub mod rnea;
 pub mod robots;
 pub mod sim;
+pub mod sincos;
 pub mod spatial;
 pub mod urdf;
 

@@ -3,7 +3,7 @@
 
 use crate::error::{check_finite, DynamicsError, Result};
 use crate::inertia::Inertia;
-use crate::spatial::{rotate_about, Force, Motion, Pose};
+use crate::spatial::{rotate_about_sc, Force, Motion, Pose};
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
@@ -108,11 +108,17 @@ pub struct Link {
 impl Link {
     /// Pose of the link's joint frame in its parent at joint position `q`:
     /// `origin ∘ Rot(axis, q)` or `origin ∘ Trans(axis q)`.
+    /// The sine and cosine are [`crate::sincos::sin_cos`]'s.
     #[inline]
     pub fn joint_pose(&self, q: f64) -> Pose {
+        self.joint_pose_sc(q, crate::sincos::sin_cos(q))
+    }
+    /// [`Link::joint_pose`] given `sc = (sin q, cos q)` (used by revolute joints only).
+    #[inline]
+    pub(crate) fn joint_pose_sc(&self, q: f64, sc: (f64, f64)) -> Pose {
         match self.kind {
             JointKind::Revolute => Pose::new(
-                rotate_about(&self.origin.rot, &self.axis, q),
+                rotate_about_sc(&self.origin.rot, &self.axis, sc),
                 self.origin.trans,
             ),
             JointKind::Prismatic => Pose::new(

@@ -135,43 +135,57 @@ pub fn skew(v: &Vector3<f64>) -> Matrix3<f64> {
     Matrix3::new(0.0, -v.z, v.y, v.z, 0.0, -v.x, -v.y, v.x, 0.0)
 }
 
-/// Rotation by angle `q` about the unit axis `axis` (Rodrigues).
+/// Rotation by angle `q` about the unit axis `axis` (Rodrigues), with the standard library's
+/// sine: for building models (URDF origins, the built-in robots). Joint poses use
+/// [`crate::sincos`] ([`rotate_about`]).
 #[inline]
 pub fn axis_angle(axis: &Vector3<f64>, q: f64) -> Matrix3<f64> {
-    let (s, c) = q.sin_cos();
+    axis_rotation(axis, q.sin_cos())
+}
+
+/// Rotation about the unit axis `axis` by the angle with sine and cosine `(s, c)` (Rodrigues).
+#[inline]
+pub fn axis_rotation(axis: &Vector3<f64>, (s, c): (f64, f64)) -> Matrix3<f64> {
     let k = skew(axis);
     Matrix3::identity() + k * s + k * k * (1.0 - c)
 }
 
-/// `o · Rot(axis, q)` for a unit `axis`. For an axis along ±x, ±y or ±z (most robots) only the
-/// two columns that turn are computed, with the values of the general product `o ·`
-/// [`axis_angle`]`(axis, q)`: that rotation's entries are then exact (±s, `1 − (1 − c)`, 1, 0),
-/// so each column of the product is a sum of two non-zero terms, which is commutative.
+/// `o · Rot(axis, q)` for a unit `axis`, with `(sin q, cos q)` from [`crate::sincos`]
+/// ([`rotate_about_sc`]).
 #[inline]
 pub fn rotate_about(o: &Matrix3<f64>, axis: &Vector3<f64>, q: f64) -> Matrix3<f64> {
+    rotate_about_sc(o, axis, crate::sincos::sin_cos(q))
+}
+
+/// `o · Rot(axis, q)` for a unit `axis`, given `(sin q, cos q)`. For an axis along ±x, ±y or ±z
+/// (most robots) only the two columns that turn are computed, with the values of the general
+/// product `o ·` [`axis_rotation`]`(axis, (s, c))`: that rotation's entries are then exact (±s,
+/// `1 − (1 − c)`, 1, 0), so each column of the product is a sum of two non-zero terms, which is
+/// commutative.
+#[inline]
+pub fn rotate_about_sc(o: &Matrix3<f64>, axis: &Vector3<f64>, sc: (f64, f64)) -> Matrix3<f64> {
     let (a, sign) = match (axis.x, axis.y, axis.z) {
         (x, 0.0, 0.0) if x.abs() == 1.0 => (0, x),
         (0.0, y, 0.0) if y.abs() == 1.0 => (1, y),
         (0.0, 0.0, z) if z.abs() == 1.0 => (2, z),
-        _ => return o * axis_angle(axis, q),
+        _ => return o * axis_rotation(axis, sc),
     };
     // One copy per axis, so that the column indices are constants.
     match a {
-        0 => rotate_about_unit::<0>(o, sign, q),
-        1 => rotate_about_unit::<1>(o, sign, q),
-        _ => rotate_about_unit::<2>(o, sign, q),
+        0 => rotate_about_unit::<0>(o, sign, sc),
+        1 => rotate_about_unit::<1>(o, sign, sc),
+        _ => rotate_about_unit::<2>(o, sign, sc),
     }
 }
 
-/// [`rotate_about`] for the axis `sign e_K` (`sign = ±1`), known to the caller
+/// [`rotate_about_sc`] for the axis `sign e_K` (`sign = ±1`), known to the caller
 /// ([`crate::Model`] knows when every joint shares one): the same values without the test.
 #[inline(always)]
 pub(crate) fn rotate_about_unit<const K: usize>(
     o: &Matrix3<f64>,
     sign: f64,
-    q: f64,
+    (s, c): (f64, f64),
 ) -> Matrix3<f64> {
-    let (s, c) = q.sin_cos();
     let s = sign * s;
     // Rodrigues' diagonal entry of the turning axes, as the general formula evaluates it.
     let cc = 1.0 + -(1.0 - c);

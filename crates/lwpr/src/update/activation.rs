@@ -25,6 +25,16 @@ pub(crate) fn pass<const NK: usize, const AVX: bool>(
     // Centres and metrics by chunks (no index arithmetic or bounds checks per RF).
     let rf_chunks = sub.centers.chunks_exact(nk).zip(kern.chunks_exact(ml));
     for (i, (c, md)) in rf_chunks.enumerate() {
+        // Diagonal metrics (SARCOS: thousands of RFs, not in the caches): the rows ahead.
+        let ahead = i + crate::update::prefetch::PASS_AHEAD;
+        if let (true, Some(c), Some(md)) = (
+            diag,
+            sub.centers.get(ahead * nk..(ahead + 1) * nk),
+            kern.get(ahead * ml..(ahead + 1) * ml),
+        ) {
+            crate::update::prefetch::lines(c);
+            crate::update::prefetch::lines(md);
+        }
         // An RF at q ≥ max(qb, q2) is neither updated nor among the two most active.
         let q = quad(
             AVX,

@@ -20,6 +20,7 @@ pub(crate) mod add_prune;
 pub(crate) mod metric;
 pub(crate) mod metric_derivatives;
 pub(crate) mod metric_step;
+pub(crate) mod prefetch;
 #[cfg(test)]
 pub(crate) mod reference;
 pub(crate) mod regression;

@@ -24,7 +24,9 @@ pub(crate) fn update_active<S: Stages>(
     ws: &mut Scratch,
 ) -> f64 {
     let mut sum_w = start_blend(p, ws);
+    let (nk, ml) = (dims::<S>(p).0, p.mlen());
     for a in 0..ws.active.len() {
+        crate::update::prefetch::ahead(sub, nk, ml, &ws.active, a);
         update_one::<S>(p, sub, a, o0, ws, &mut sum_w);
     }
     sum_w
