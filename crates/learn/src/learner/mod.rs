@@ -36,6 +36,8 @@ mod inertia;
 mod inertia_tests;
 mod load;
 mod metric;
+#[cfg(test)]
+mod metric_tests;
 mod models;
 mod nominal;
 mod null_space;

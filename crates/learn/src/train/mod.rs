@@ -17,6 +17,7 @@ mod on_policy;
 mod paths;
 #[cfg(test)]
 mod paths_tests;
+mod posture_holds;
 mod postures;
 #[cfg(test)]
 mod postures_tests;
@@ -31,7 +32,7 @@ pub use observer::{
     EpisodeOutcome, EpisodeRecord, EpisodeReport, Observer, OnEvaluation, Phase, Progress,
 };
 pub use paths::PathSource;
-pub use postures::PostureHolds;
+pub use posture_holds::PostureHolds;
 pub use safety::{StepPoint, STEP_BIN_SECONDS};
 pub use trainer::{Evaluate, TrainSummary, Trainer};
 

@@ -163,7 +163,7 @@ pub struct Trainer<'a, R: Robot + ?Sized> {
     paths_drawn: u64,
     /// The recorded path postures of `posture_holds`, and whether the transitions teach the
     /// static gravity model alone (while `learning` is false: the holds at those postures).
-    pub(super) postures: super::postures::PosturePool,
+    pub(super) postures: super::posture_holds::PosturePool,
     pub(super) static_only: bool,
     wall: Instant,
 }
