@@ -50,7 +50,7 @@ pub use model::{
     Friction, JointKind, JointLimits, Link, LockedJoint, Model, ModelSpec, UrdfImport, GRAVITY,
     MAX_DOF,
 };
-pub use profile::{PathPlacement, RobotProfile};
+pub use profile::{CostMetric, PathPlacement, RobotProfile};
 pub use rnea::{gravity, nonlinear_effects, rnea};
 pub use sim::{FrictionScheme, Measurement, Robot, SimConfig, SimRobot, MAX_SUBSTEPS};
 pub use spatial::Pose;

@@ -50,6 +50,20 @@ impl PathPlacement {
     }
 }
 
+/// The metric `N` of the learner's cost `(u − u0)ᵀ N (u − u0)`, of its null space and of the
+/// hindsight shrinkage (`osrl_learn`'s `learner/metric.rs`). A robot profile chooses it
+/// (`osrl_control::profile`'s rule); a learner config's `[learner.controllers] metric` wins.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CostMetric {
+    /// `N = I`, the paper's choice for learning (eq. 7 with `N = I` is the optimum).
+    #[default]
+    Identity,
+    /// `N = B̂ ≈ M⁻¹`, the inverse inertia measured near home in the warm-up: the dynamically
+    /// consistent split (eq. 7 with `N = M⁻¹` is the optimum; the evaluation's `u*` uses it).
+    InverseInertia,
+}
+
 /// The profile of a robot (module docs). Vectors have one entry per degree of freedom of the
 /// model (after tip and locks), in chain order.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -104,6 +118,12 @@ pub struct RobotProfile {
     /// Placement of the default task path.
     #[serde(skip_serializing_if = "PathPlacement::is_empty")]
     pub path: PathPlacement,
+    /// The learner's cost metric `N` ([`CostMetric`]). Default: `inverse_inertia` when eq. 7
+    /// with `N = I` on the true model turns some joint through more than
+    /// `osrl_control::profile::METRIC_SWEEP_BOUND` rad along the default path (the light
+    /// wrists of the UR5 and the Panda), else `identity` (the paper's; the built-in arms).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub metric: Option<CostMetric>,
 }
 
 impl RobotProfile {
@@ -173,6 +193,7 @@ impl RobotProfile {
                 b: q.b.or(p.b),
                 scale: q.scale.or(p.scale),
             },
+            metric: over.metric.or(self.metric),
         }
     }
 }

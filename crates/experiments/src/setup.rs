@@ -102,7 +102,7 @@ impl Setup {
         let (model, profile) = (embed(profiled.model, embedded)?, profiled.profile);
         let traj = trajectory.build(&model)?;
         let home = check_reachable(&model, &traj, &IkOptions::default())?.q_start;
-        let learner = data_sheet(&model, LearnerConfig::default())?;
+        let learner = data_sheet(&model, &profile, LearnerConfig::default())?;
         Ok(Self {
             robot,
             model,
@@ -203,7 +203,7 @@ impl Setup {
     /// # Errors
     /// The config's own checks for this robot.
     pub fn with_learner(mut self, cfg: LearnerConfig) -> Result<Self> {
-        self.learner = data_sheet(&self.model, cfg)?;
+        self.learner = data_sheet(&self.model, &self.profile, cfg)?;
         Ok(self)
     }
 
@@ -314,7 +314,7 @@ impl Setup {
             self.train.gains,
             self.eval_periods,
         )?;
-        if self.learner.controllers.metric == osrl_learn::CostMetric::InverseInertia {
+        if self.learner.controllers.cost_metric() == osrl_learn::CostMetric::InverseInertia {
             ev.set_metric(osrl_control::MetricKind::InverseMass)?;
         }
         Ok(ev)
@@ -424,8 +424,14 @@ fn embed(model: Model, resolved: RobotProfile) -> Result<Model> {
     Ok(Model::new(spec)?)
 }
 
-/// `cfg` with its empty data-sheet fields filled from `model`, checked for it.
-fn data_sheet(model: &Model, mut cfg: LearnerConfig) -> Result<LearnerConfig> {
+/// `cfg` with its empty data-sheet fields filled from `model` and an unset cost metric from
+/// the robot's resolved `profile`, checked for it.
+fn data_sheet(
+    model: &Model,
+    profile: &ResolvedProfile,
+    mut cfg: LearnerConfig,
+) -> Result<LearnerConfig> {
+    cfg.controllers.metric = cfg.controllers.metric.or(Some(profile.metric));
     let spec = model.spec();
     let tau_max: Vec<f64> = model.tau_max().collect();
     cfg.fill_data_sheet(&spec.kp, &spec.kd, &spec.q_rest, &tau_max);
@@ -470,6 +476,34 @@ mod tests {
         let mut l = LearnerConfig::default();
         l.nominal.kp = vec![1.0; 2];
         assert!(s.clone().with_learner(l).is_err());
+    }
+
+    /// The learner's cost metric is the robot profile's unless the learner config sets it.
+    #[test]
+    fn the_cost_metric_is_the_profiles_unless_the_learner_config_sets_it() {
+        use osrl_learn::CostMetric;
+        let metric = |s: &Setup| s.learner_config().controllers.metric;
+        let s = Setup::new("planar3").unwrap();
+        assert_eq!(metric(&s), Some(CostMetric::Identity));
+        let mut cfg = LearnerConfig::default();
+        cfg.controllers.metric = Some(CostMetric::InverseInertia);
+        let set = s.clone().with_learner(cfg).unwrap();
+        assert_eq!(metric(&set), Some(CostMetric::InverseInertia));
+        let ur5 = format!(
+            "{}/../dynamics/tests/fixtures/example-robot-data/ur5_robot.urdf",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        let arm = Setup::new(&ur5).unwrap();
+        assert_eq!(arm.profile().metric, CostMetric::InverseInertia);
+        assert_eq!(metric(&arm), Some(CostMetric::InverseInertia));
+        let unset = arm.clone().with_learner(LearnerConfig::default()).unwrap();
+        assert_eq!(metric(&unset), Some(CostMetric::InverseInertia));
+        let mut cfg = LearnerConfig::default();
+        cfg.controllers.metric = Some(CostMetric::Identity);
+        assert_eq!(
+            metric(&arm.with_learner(cfg).unwrap()),
+            Some(CostMetric::Identity)
+        );
     }
 
     #[test]

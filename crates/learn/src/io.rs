@@ -26,8 +26,9 @@ use serde::{Deserialize, Serialize};
 
 /// First bytes of a saved learned controller.
 pub const MAGIC: &[u8; 8] = b"OSRLLC\0\0";
-/// Version of the saved format; files of another version are refused.
-pub const FORMAT_VERSION: u32 = 9;
+/// Version of the saved format; files of another version are refused. 10: the cost metric `N`
+/// estimated in the warm-up is saved with the models (before, a loaded learner used `N = I`).
+pub const FORMAT_VERSION: u32 = 10;
 
 /// Everything a learner is, as stored (the config as JSON text, so its untagged enums survive).
 #[derive(Serialize, Deserialize)]
@@ -89,8 +90,12 @@ impl Learner {
         }
         let version = u32::from_le_bytes(bytes[8..12].try_into().expect("4 bytes"));
         if version != FORMAT_VERSION {
+            let older = match version < FORMAT_VERSION {
+                true => " (saved by an older build: train it again with `osrl train`)",
+                false => "",
+            };
             return Err(bad(format!(
-                "format version {version}, this build reads {FORMAT_VERSION}"
+                "format version {version}, this build reads {FORMAT_VERSION}{older}"
             )));
         }
         let len = u64::from_le_bytes(bytes[12..20].try_into().expect("8 bytes")) as usize;

@@ -250,3 +250,49 @@ fn idle_untrained_fields_are_pruned_with_their_controllers() {
         .to_string();
     assert!(e.contains("prune_untrained_after"), "{e}");
 }
+
+/// The cost metric `N = B̂` estimated in the warm-up travels with a saved learner: the loaded
+/// one evaluates (eq. 7 with `N = M⁻¹` as `u*`) and learns on exactly as the one in memory.
+/// (Before format 10 `N` was not saved and the loaded learner learned on with `N = I`.)
+#[test]
+fn a_saved_learner_keeps_its_cost_metric_and_learns_on_as_in_memory() {
+    use osrl_learn::eval::Evaluator;
+    let s = common::planar3();
+    let mut cfg = common::config(&s);
+    cfg.controllers.metric = Some(osrl_learn::CostMetric::InverseInertia);
+    let mut learner = osrl_learn::Learner::new(3, 2, 0.002, cfg.clone()).unwrap();
+    common::run(&s, &mut learner, 0.6, 0.4, 0.0, 3);
+    let bytes = learner.to_bytes().unwrap();
+    let mut back = osrl_learn::Learner::from_bytes(&bytes).unwrap();
+    assert_eq!(back.to_bytes().unwrap(), bytes, "save → load → save");
+    let n = learner
+        .cost_metric()
+        .expect("a positive-definite B̂ from the warm-up");
+    assert_eq!(back.cost_metric(), Some(n.clone()));
+    assert!(
+        n.iter().any(|&v| (v - 1.0).abs() > 1e-3),
+        "N = B̂ is not I: {n:?}"
+    );
+    let evaluate = |l: &mut osrl_learn::Learner| {
+        let mut ev = Evaluator::new(
+            s.model.clone(),
+            osrl_dynamics::SimConfig::default(),
+            s.traj.clone(),
+            s.q_start.clone(),
+            osrl_learn::train::TrainConfig::default().gains,
+            1,
+        )
+        .unwrap();
+        ev.set_metric(osrl_control::MetricKind::InverseMass)
+            .unwrap();
+        ev.evaluate(l).unwrap()
+    };
+    let (e1, e2) = (evaluate(&mut learner), evaluate(&mut back));
+    assert!(e1.tracking_rms_mm.is_finite());
+    assert_eq!(e1, e2, "the same evaluation");
+    // Learning on from the same state with the same seed: the same learner, bit for bit.
+    common::run(&s, &mut learner, 0.3, 0.0, 0.0, 4);
+    common::run(&s, &mut back, 0.3, 0.0, 0.0, 4);
+    let (a, b) = (learner.to_bytes().unwrap(), back.to_bytes().unwrap());
+    assert!(a == b, "continued learning differs after loading");
+}

@@ -125,7 +125,8 @@ pub fn run(a: Args) -> Result<()> {
     };
     let setup = setup.with_eval_periods(periods)?;
     let (info, mut learner, model) = saved.into_parts();
-    let mut ev = setup.evaluator(&model)?;
+    // The profiled model (its postures, gains, torque limits): the one the training evaluated.
+    let mut ev = setup.evaluator(setup.model())?;
     ev.keep_series = true;
     let res = ev.evaluate(&mut learner).context("evaluation")?;
     let kind = format!("{:?}", setup.trajectory_config().kind).to_lowercase();

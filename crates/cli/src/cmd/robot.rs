@@ -70,6 +70,15 @@ pub fn run(a: Args) -> Result<()> {
             "profile: home {:?}; path centre {:?}, a {:.3} m, b {:.3} m; reach {:.3} m; sources {:?}",
             p.home, p.path.centre, p.path.a, p.path.b, p.reach, p.sources
         );
+        let sweep = match &p.joint_sweep {
+            Some(s) => format!(
+                "; eq. 7 with N = I sweeps the joints {:.3?} rad along the path (bound {} rad)",
+                s,
+                osrl_control::profile::METRIC_SWEEP_BOUND
+            ),
+            None => String::new(),
+        };
+        println!("learner cost metric: {:?}{sweep}", p.metric);
     }
     crate::util::print_json(&summary);
     Ok(())

@@ -27,6 +27,13 @@
 //!   model, 500 Hz) tracks it for three periods within [`TRACKING_BOUND_MM`] RMS without a
 //!   saturated torque. An arm for which no candidate works is refused
 //!   with the last reason.
+//! - **metric** (the learner's cost metric `N`, [`CostMetric`]): eq. 7 with `N = I` (default
+//!   task gains, true model, 500 Hz) run along the resolved default path for three periods
+//!   from rest (the check above's run when there is one); if some joint's sweep
+//!   `max q_j − min q_j` over it exceeds [`METRIC_SWEEP_BOUND`], `inverse_inertia`, else
+//!   `identity` ([`metric_rule`]). `N = I` puts the cheapest torque on the lightest joints, and
+//!   on an arm with light wrists the optimum the learner chases turns them far beyond the
+//!   region its fields were trained in (`docs/decisions.md`, D-arms28c, D-metric28).
 
 mod apply;
 mod check;
@@ -35,6 +42,7 @@ mod placement;
 mod resolved;
 mod verify;
 
+pub use osrl_dynamics::CostMetric;
 pub use placement::TORQUE_SHARE;
 pub use resolved::{PathFrame, Profiled, ResolvedProfile, Source};
 pub use verify::TRACKING_BOUND_MM;
@@ -52,6 +60,22 @@ pub const DEFAULT_DAMPING: f64 = 1.0;
 pub const DEFAULT_SCALE: f64 = 0.1;
 /// Home candidates tried before an arm is refused.
 const HOME_CANDIDATES: usize = 6;
+/// Largest joint sweep (rad) of eq. 7 with `N = I` along the default path for which the
+/// profile keeps the learner's metric `N = I` ([`metric_rule`]). Measured largest sweeps: planar3
+/// 0.72, sarcos7 0.44 (both learn with `N = I`, and sarcos7 diverges with `M⁻¹`); UR5 1.63,
+/// 1.74, 6.12 (joints 3–5), Panda 2.25 and 3.61 (joints 4 and 6), which brake with `N = I` and
+/// learn with `M⁻¹` (`docs/decisions.md`, D-arms28c): 1 rad lies between the two groups.
+pub const METRIC_SWEEP_BOUND: f64 = 1.0;
+
+/// The metric the profile chooses from the joint sweeps (rad) of eq. 7 with `N = I` along the
+/// default path: `inverse_inertia` when one exceeds [`METRIC_SWEEP_BOUND`], else `identity`.
+pub fn metric_rule(sweep: &[f64]) -> CostMetric {
+    if sweep.iter().any(|&s| s.is_nan() || s > METRIC_SWEEP_BOUND) {
+        CostMetric::InverseInertia
+    } else {
+        CostMetric::Identity
+    }
+}
 
 /// A built-in robot by name, or a URDF file read with the profile's tip and locks.
 ///
@@ -180,13 +204,23 @@ pub fn resolve(model: &Model, given: &RobotProfile) -> Result<Profiled> {
             };
             let traj = figure8(&frame).map_err(|e| resolved::field("path", e))?;
             let checked = placement::feasible(&profiled, &traj).and_then(|f| {
-                if computed {
-                    verify::eq7_tracks(&profiled, &traj, &f.reach.q_start)?;
-                }
-                Ok(f)
+                let sweep = match computed {
+                    true => Some(verify::eq7_sweep(&profiled, &traj, &f.reach.q_start, true)?),
+                    false => None,
+                };
+                Ok((f, sweep))
             });
             match checked {
-                Ok(f) => {
+                Ok((f, sweep)) => {
+                    let (metric, sweep) = match (p.metric, sweep) {
+                        (Some(m), s) => (m, s),
+                        (None, Some(s)) => (metric_rule(&s), Some(s)),
+                        (None, None) => {
+                            let s = verify::eq7_sweep(&profiled, &traj, &f.reach.q_start, false)
+                                .map_err(|e| resolved::field("metric", e))?;
+                            (metric_rule(&s), Some(s))
+                        }
+                    };
                     let values = resolved::Values {
                         home: home.clone(),
                         rest,
@@ -197,6 +231,8 @@ pub fn resolve(model: &Model, given: &RobotProfile) -> Result<Profiled> {
                         zeta,
                         frame,
                         reach,
+                        metric,
+                        sweep,
                     };
                     return Ok(Profiled::new(profiled, values, f, given, &file));
                 }

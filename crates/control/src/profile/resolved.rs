@@ -4,7 +4,7 @@
 use super::placement::Feasible;
 use crate::error::ControlError;
 use crate::trajectory_config::TrajectoryConfig;
-use osrl_dynamics::{Model, PathPlacement, RobotProfile};
+use osrl_dynamics::{CostMetric, Model, PathPlacement, RobotProfile};
 use serde::Serialize;
 use std::collections::BTreeMap;
 
@@ -62,7 +62,13 @@ pub struct ResolvedProfile {
     pub min_limit_margin: f64,
     /// Largest share of a torque limit the IK path's inverse dynamics need.
     pub peak_torque_ratio: f64,
-    /// Where each value came from (keys: `home`, `rest`, `kp`, `kd`, `torque_limits`, `path`;
+    /// The learner's cost metric `N` (given, or [`super::metric_rule`] of `joint_sweep`).
+    pub metric: CostMetric,
+    /// Each joint's sweep `max q − min q` (rad or m) under eq. 7 with `N = I` along the default
+    /// path for three periods (none when the metric is given and no check simulated it).
+    pub joint_sweep: Option<Vec<f64>>,
+    /// Where each value came from (keys: `home`, `rest`, `kp`, `kd`, `torque_limits`, `path`,
+    /// `metric`;
     /// `path` is `given` or `file` when any of its fields is, the others then computed).
     pub sources: BTreeMap<&'static str, Source>,
 }
@@ -78,6 +84,8 @@ pub(super) struct Values {
     pub zeta: f64,
     pub frame: super::PathFrame,
     pub reach: f64,
+    pub metric: CostMetric,
+    pub sweep: Option<Vec<f64>>,
 }
 
 /// A model with its resolved profile applied (postures, gains, torque limits).
@@ -145,6 +153,8 @@ impl Profiled {
         let (gt, ft) = (given.torque_limits.is_some(), file.torque_limits.is_some());
         put("torque_limits", gt, ft, tau_src);
         put("path", path_set(given), path_set(file), fallback);
+        let (gm, fm) = (given.metric.is_some(), file.metric.is_some());
+        put("metric", gm, fm, Source::Computed);
         let import = model.spec().urdf.clone();
         let fr = &v.frame;
         let fill = if builtin {
@@ -178,6 +188,8 @@ impl Profiled {
             reach: v.reach,
             min_limit_margin: f.reach.min_margin,
             peak_torque_ratio: f.peak_torque_ratio,
+            metric: v.metric,
+            joint_sweep: v.sweep,
             sources,
         };
         Self {

@@ -3,7 +3,8 @@
 //! published-arms table) must track within
 //! [`TRACKING_BOUND_MM`] RMS without saturating a torque. (Steps at a joint limit are not
 //! refused: where the null space drifts to a hard stop while the task is tracked, the
-//! published-arms table reports them.)
+//! published-arms table reports them.) The same run measures each joint's sweep, from which
+//! the profile chooses the learner's cost metric (`super::metric_rule`).
 
 use crate::closed_loop::{run_closed_loop, Metrics};
 use crate::config::OscConfig;
@@ -19,14 +20,32 @@ pub const TRACKING_BOUND_MM: f64 = 0.05;
 const PERIODS: usize = 3;
 
 /// Runs eq. 7 from rest at `start` for three periods of `traj` (the default simulator, 500 Hz)
-/// and returns its metrics, or an error saying what missed the bound.
-pub(super) fn eq7_tracks(model: &Model, traj: &Trajectory, start: &[f64]) -> Result<Metrics> {
+/// and returns each joint's sweep `max q_j − min q_j` over the run (rad or m); with `check`,
+/// an error saying what missed the bound instead when it tracks worse than
+/// [`TRACKING_BOUND_MM`] or saturates a torque.
+pub(super) fn eq7_sweep(
+    model: &Model,
+    traj: &Trajectory,
+    start: &[f64],
+    check: bool,
+) -> Result<Vec<f64>> {
     let mut sim = SimRobot::new(model.clone(), SimConfig::default())?;
     sim.reset(start, &vec![0.0; model.nq()])?;
     let mut osc = Osc::new(model.clone(), OscConfig::default())?;
     let seconds = PERIODS as f64 * traj.period();
-    let m = run_closed_loop(&mut sim, &mut osc, traj, model.task_axes(), seconds)?.metrics;
-    if m.tracking_rms_mm > TRACKING_BOUND_MM || m.torque_saturation_steps > 0 {
+    let run = run_closed_loop(&mut sim, &mut osc, traj, model.task_axes(), seconds)?;
+    let n = model.nq();
+    let sweep = (0..n)
+        .map(|j| {
+            let q = run.series.q.iter().skip(j).step_by(n);
+            let (lo, hi) = q.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| {
+                (lo.min(x), hi.max(x))
+            });
+            hi - lo
+        })
+        .collect();
+    let m: Metrics = run.metrics;
+    if check && (m.tracking_rms_mm > TRACKING_BOUND_MM || m.torque_saturation_steps > 0) {
         let steps = traj.steps_per_period(SimConfig::default().control_period) * PERIODS;
         let implicit = sim.stats().implicit_friction;
         let stiff = if implicit > 0 {
@@ -69,5 +88,5 @@ pub(super) fn eq7_tracks(model: &Model, traj: &Trajectory, start: &[f64]) -> Res
             m.tracking_rms_mm, m.torque_saturation_steps
         )));
     }
-    Ok(m)
+    Ok(sweep)
 }

@@ -19,18 +19,9 @@ pub enum CostKind {
     NullSpace,
 }
 
-/// The metric `N` of the local controllers' cost `(u − u0)ᵀ N (u − u0)`, of its null space and of
-/// the hindsight shrinkage (`learner/metric.rs`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum CostMetric {
-    /// `N = I`, the paper's choice for learning (eq. 7 with `N = I` is the optimum).
-    #[default]
-    Identity,
-    /// `N = B̂ ≈ M⁻¹`, the inverse inertia measured near home in the warm-up: the dynamically
-    /// consistent split (eq. 7 with `N = M⁻¹` is the optimum; the evaluation's `u*` uses it).
-    InverseInertia,
-}
+/// The metric `N` of the local controllers' cost (`learner/metric.rs`); defined with the robot
+/// profile, which chooses it.
+pub use osrl_dynamics::CostMetric;
 
 /// The nominal behaviour `u0 = ĝ(q) − K_Dq q̇ − K_Pq (q − q_rest)` (eq. 6 plus learned gravity).
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -155,12 +146,13 @@ pub struct ControllerConfig {
     /// made planar3 and the UR5 worse (D21).
     pub step_spread: usize,
     /// The metric `N` of the cost, of the null space of `Â` and of the hindsight shrinkage (see
-    /// [`CostMetric`]). Default `identity` (the paper's). `inverse_inertia` keeps the Panda's and
-    /// the UR5's wrists near home, where `N = I` spins them through 1.6–6 rad along the path
-    /// (`docs/decisions.md`, D-arms28c). Not saved with the model: a loaded learner that learns
-    /// again (a continuation) uses `N = I`.
-    #[serde(default)]
-    pub metric: CostMetric,
+    /// [`CostMetric`]). Default: unset, the robot profile's choice (`osrl robot` prints it;
+    /// `identity`, the paper's, for the built-in arms; `inverse_inertia` keeps the Panda's and
+    /// the UR5's wrists near home, where `N = I` spins them through 1.6–6 rad along the path,
+    /// `docs/decisions.md` D-arms28c, D-metric28); `identity` for a learner built without a
+    /// robot profile. Set, it wins over the profile. The estimated `N` is saved with the model.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub metric: Option<CostMetric>,
 }
 
 /// The local dynamics `ẍ ≈ [uᵀ, q̇ᵀ, (q − c)ᵀ, 1, u_j (q_k − c_k)] Θ` of each receptive field, by
@@ -339,6 +331,13 @@ impl Default for PartitionConfig {
     }
 }
 
+impl ControllerConfig {
+    /// The metric the learner uses: `metric`, `identity` when unset.
+    pub fn cost_metric(&self) -> CostMetric {
+        self.metric.unwrap_or_default()
+    }
+}
+
 impl Default for ControllerConfig {
     fn default() -> Self {
         Self {
@@ -361,7 +360,7 @@ impl Default for ControllerConfig {
             command_projection: 0.0,
             damping_bound: 0.0,
             step_spread: 1,
-            metric: CostMetric::Identity,
+            metric: None,
         }
     }
 }

@@ -13,11 +13,49 @@ use super::inertia::inverse_inertia_matrix;
 use super::null_space::{null_space_cost, project_null};
 use nalgebra::DMatrix;
 use osrl_dynamics::Measurement;
+use serde::{Deserialize, Serialize};
 
-/// `N = L Lᵀ` by its lower Cholesky factor `L` (n×n).
-#[derive(Clone, Debug, PartialEq)]
+/// `N = L Lᵀ` by its lower Cholesky factor `L` (n×n); saved as `N` itself (row-major) and
+/// factorised again on loading, which refuses an `N` that is not positive definite.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(into = "SavedMetric", try_from = "SavedMetric")]
 pub(crate) struct Metric {
     pub(super) l: DMatrix<f64>,
+}
+
+/// The saved form of a [`Metric`]: `L` (n×n, row-major). (`L` rather than `N`: its round trip
+/// is exact, so a loaded learner computes what the saved one did to the bit.)
+#[derive(Serialize, Deserialize)]
+struct SavedMetric {
+    n: usize,
+    l: Vec<f64>,
+}
+
+impl From<Metric> for SavedMetric {
+    fn from(m: Metric) -> Self {
+        let n = m.l.nrows();
+        Self {
+            n,
+            l: m.l.transpose().as_slice().to_vec(),
+        }
+    }
+}
+
+impl TryFrom<SavedMetric> for Metric {
+    type Error = String;
+    fn try_from(s: SavedMetric) -> Result<Self, String> {
+        let ok = s.l.len() == s.n * s.n && s.l.iter().all(|v| v.is_finite());
+        let l = DMatrix::from_row_slice(s.n, s.n, &s.l);
+        let lower = (0..s.n).all(|i| l[(i, i)] > 0.0 && (i + 1..s.n).all(|k| l[(i, k)] == 0.0));
+        if !(ok && lower) {
+            return Err(format!(
+                "the cost metric's factor is not a {0}×{0} lower-triangular matrix with a \
+                 positive diagonal",
+                s.n
+            ));
+        }
+        Ok(Self { l })
+    }
 }
 
 impl Metric {
@@ -37,6 +75,14 @@ impl Metric {
         Some(Self {
             l: n.cholesky()?.l(),
         })
+    }
+
+    /// `N = L Lᵀ` (n×n, row-major).
+    pub fn matrix(&self) -> Vec<f64> {
+        (&self.l * self.l.transpose())
+            .transpose()
+            .as_slice()
+            .to_vec()
     }
 
     /// `uᵀ N u = ‖Lᵀ u‖²`; `v` (n) is scratch.

@@ -30,8 +30,7 @@ pub(crate) struct Models {
     #[serde(skip)]
     pub g_static: Vec<f64>,
     /// The cost's metric `N` (`controllers.metric`, `metric.rs`), from the warm-up; `None`:
-    /// `N = I` (also after loading: it is not saved).
-    #[serde(skip)]
+    /// `N = I`. Saved with the model (format 10), so a loaded learner learns on in it.
     pub metric: Option<super::metric::Metric>,
 }
 
@@ -99,7 +98,7 @@ impl Models {
         } else {
             (Vec::new(), Vec::new())
         };
-        let metric = match cfg.controllers.metric {
+        let metric = match cfg.controllers.cost_metric() {
             crate::config::CostMetric::Identity => None,
             crate::config::CostMetric::InverseInertia => {
                 super::metric::Metric::inverse_inertia(warm, dt)

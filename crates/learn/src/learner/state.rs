@@ -228,6 +228,13 @@ impl Learner {
         self.static_frozen = frozen;
     }
 
+    /// The cost metric `N` (n×n, row-major) the local controllers use, estimated in the
+    /// warm-up (`controllers.metric = "inverse_inertia"`); `None` for `N = I` or before the
+    /// warm-up ends.
+    pub fn cost_metric(&self) -> Option<Vec<f64>> {
+        self.state.models()?.metric.as_ref().map(|m| m.matrix())
+    }
+
     /// Whether `ĝ` is frozen.
     pub fn gravity_frozen(&self) -> bool {
         self.gravity_frozen

@@ -85,7 +85,8 @@ pub fn train_simulated(
     let (n, dt) = (truth.nq(), sim_cfg.control_period);
     let mut sim = osrl_dynamics::SimRobot::new(truth.clone(), sim_cfg)?;
     sim.reset(home, &vec![0.0; n])?;
-    let inverse_inertia = lcfg.controllers.metric == crate::config::CostMetric::InverseInertia;
+    let inverse_inertia =
+        lcfg.controllers.cost_metric() == crate::config::CostMetric::InverseInertia;
     let mut learner = Learner::new(n, truth.task_dim(), dt, lcfg)?;
     let mut ev = crate::eval::Evaluator::new(
         truth.clone(),
