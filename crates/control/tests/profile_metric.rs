@@ -39,7 +39,7 @@ fn built_in_arms_keep_the_identity_and_the_published_arms_get_the_inverse_inerti
         assert_eq!(p.metric, CostMetric::Identity, "{}", model.name());
         assert_eq!(p.sources["metric"], Source::Computed);
     }
-    // The last joint of both: its Jacobian column is 0, so N = I spins it (D-arms28c).
+    // The last joint of both: its Jacobian column is 0, so N = I spins it (D27).
     for file in ["ur5_robot.urdf", "panda.urdf"] {
         let given = RobotProfile::default();
         let model = load_robot(&fixture(file), &given).unwrap();

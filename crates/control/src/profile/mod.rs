@@ -33,7 +33,7 @@
 //!   `max q_j − min q_j` over it exceeds [`METRIC_SWEEP_BOUND`], `inverse_inertia`, else
 //!   `identity` ([`metric_rule`]). `N = I` puts the cheapest torque on the lightest joints, and
 //!   on an arm with light wrists the optimum the learner chases turns them far beyond the
-//!   region its fields were trained in (`docs/decisions.md`, D-arms28c, D-metric28).
+//!   region its fields were trained in (`docs/decisions.md`, D27, D29).
 
 mod apply;
 mod check;
@@ -64,7 +64,7 @@ const HOME_CANDIDATES: usize = 6;
 /// profile keeps the learner's metric `N = I` ([`metric_rule`]). Measured largest sweeps: planar3
 /// 0.72, sarcos7 0.44 (both learn with `N = I`, and sarcos7 diverges with `M⁻¹`); UR5 1.63,
 /// 1.74, 6.12 (joints 3–5), Panda 2.25 and 3.61 (joints 4 and 6), which brake with `N = I` and
-/// learn with `M⁻¹` (`docs/decisions.md`, D-arms28c): 1 rad lies between the two groups.
+/// learn with `M⁻¹` (`docs/decisions.md`, D27): 1 rad lies between the two groups.
 pub const METRIC_SWEEP_BOUND: f64 = 1.0;
 
 /// The metric the profile chooses from the joint sweeps (rad) of eq. 7 with `N = I` along the

@@ -32,7 +32,7 @@ pub struct AdaptationConfig {
     pub residual_floor: f64,
     /// The same floor with the local dynamics on differences (`"difference"`, the default
     /// regression; m/s³ RMS, > 0). Default 1: with 0.02 the first episode's start made an
-    /// unchanged sarcos7 re-adapt (`docs/decisions.md`, D-adapt26).
+    /// unchanged sarcos7 re-adapt (`docs/decisions.md`, D26).
     pub residual_floor_difference: f64,
     /// Forgetting factor per sample of the local dynamics at full strength and activation 1, in
     /// (0, 1]. Default 0.995: a memory of about 200 samples (0.4 s at 500 Hz).

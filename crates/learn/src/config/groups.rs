@@ -149,7 +149,7 @@ pub struct ControllerConfig {
     /// [`CostMetric`]). Default: unset, the robot profile's choice (`osrl robot` prints it;
     /// `identity`, the paper's, for the built-in arms; `inverse_inertia` keeps the Panda's and
     /// the UR5's wrists near home, where `N = I` spins them through 1.6–6 rad along the path,
-    /// `docs/decisions.md` D-arms28c, D-metric28); `identity` for a learner built without a
+    /// `docs/decisions.md` D27, D29); `identity` for a learner built without a
     /// robot profile. Set, it wins over the profile. The estimated `N` is saved with the model.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub metric: Option<CostMetric>,

@@ -1,5 +1,5 @@
 //! The metric `N` of the cost `(u − u0)ᵀ N (u − u0)` and of the null space of `Â`
-//! (`controllers.metric`, `docs/decisions.md` D-arms28c). `N = I` is the paper's; with
+//! (`controllers.metric`, `docs/decisions.md` D27). `N = I` is the paper's; with
 //! `N = B̂ ≈ M⁻¹`, measured in the warm-up (`inertia.rs`, the least-squares fit of `q̈` on
 //! `[u, q, q̇, 1]`), the null space of `Â = J M⁻¹` in the `N`-metric is that of `J` in the joint
 //! velocities — the dynamically consistent split of eq. 7 with `N = M⁻¹` — so the task is not

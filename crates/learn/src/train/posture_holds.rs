@@ -10,7 +10,7 @@ use std::collections::VecDeque;
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct PostureHolds {
-    /// Postures visited per return home (0: off). Default 0 (`docs/decisions.md`, D-nmse25).
+    /// Postures visited per return home (0: off). Default 0 (`docs/decisions.md`, D25).
     pub count: usize,
     /// Minimum-jerk move to each posture (s). Default 0.8: the babbling's shortest moves are
     /// 0.6 s, and the postures lie within a few tenths of a radian of each other.
