@@ -32,12 +32,12 @@ struct Step<'a> {
 }
 
 impl Learner {
-    /// Learns from a checked transition `prev → cur` once the models exist (nothing before).
-    pub(crate) fn learn_ready(&mut self, prev: &Measurement, cur: &Measurement) -> Result<()> {
+    /// One learning step's view of the learner; `None` before the models exist.
+    fn step(&mut self) -> Option<Step<'_>> {
         let State::Ready(models) = &mut self.state else {
-            return Ok(());
+            return None;
         };
-        Step {
+        Some(Step {
             cfg: &self.cfg,
             features: &self.features,
             models,
@@ -50,8 +50,15 @@ impl Learner {
             static_frozen: self.static_frozen,
             adapt: &mut self.adapt,
             load: &mut self.load,
+        })
+    }
+
+    /// Learns from a checked transition `prev → cur` once the models exist (nothing before).
+    pub(crate) fn learn_ready(&mut self, prev: &Measurement, cur: &Measurement) -> Result<()> {
+        match self.step() {
+            Some(mut step) => step.run(prev, cur),
+            None => Ok(()),
         }
-        .run(prev, cur)
     }
 
     /// Learns from `prev → cur` in the static gravity model alone (its gate decides whether the
@@ -66,24 +73,10 @@ impl Learner {
             self.stats.rejected += 1;
             return Err(e);
         }
-        let State::Ready(models) = &mut self.state else {
-            return Ok(());
-        };
-        Step {
-            cfg: &self.cfg,
-            features: &self.features,
-            models,
-            stats: &mut self.stats,
-            ws: &mut self.ws,
-            n: self.n,
-            m: self.m,
-            dt: self.dt,
-            gravity_frozen: self.gravity_frozen,
-            static_frozen: self.static_frozen,
-            adapt: &mut self.adapt,
-            load: &mut self.load,
+        match self.step() {
+            Some(mut step) => step.learn_static(prev, cur, false),
+            None => Ok(()),
         }
-        .learn_static(prev, cur, false)
     }
 }
 

@@ -1,7 +1,7 @@
 //! `TrainConfig::posture_holds`: the holds at recorded path postures teach the static gravity
 //! model and nothing else; `Learner::learn_static_gravity` touches no other model.
 
-use super::{PostureHolds, TrainConfig, Trainer};
+use super::{PostureHolds, TrainConfig};
 use crate::learner::fixture;
 use crate::Learner;
 use osrl_control::TrajectoryConfig;
@@ -35,20 +35,7 @@ fn run(holds: usize) -> (super::TrainSummary, Learner) {
         },
         ..fixture::short_training(0.7)
     };
-    let axes = model.task_axes().to_vec();
-    let mut evaluate = |_: &mut Learner| Ok(Default::default());
-    let summary = Trainer::new(
-        &mut sim,
-        &mut learner,
-        &traj,
-        &axes,
-        &cfg,
-        &mut evaluate,
-        &mut (),
-    )
-    .unwrap()
-    .run()
-    .unwrap();
+    let summary = super::step_limit_tests::train_quietly(&mut sim, &mut learner, &traj, &cfg);
     (summary, learner)
 }
 

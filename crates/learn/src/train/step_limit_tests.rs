@@ -17,20 +17,23 @@ fn run(limit: Option<f64>) -> super::TrainSummary {
         command_step_limit: limit,
         ..fixture::short_training(0.6)
     };
-    let axes = model.task_axes().to_vec();
+    train_quietly(&mut sim, &mut learner, &traj, &cfg)
+}
+
+/// Trains `learner` on the fixture arm `sim` along `traj` with `cfg`: no evaluations, no
+/// observer (planar3's task axes).
+pub(super) fn train_quietly(
+    sim: &mut osrl_dynamics::SimRobot,
+    learner: &mut Learner,
+    traj: &osrl_control::Trajectory,
+    cfg: &TrainConfig,
+) -> super::TrainSummary {
+    let axes = robots::planar3().task_axes().to_vec();
     let mut evaluate = |_: &mut Learner| Ok(Default::default());
-    Trainer::new(
-        &mut sim,
-        &mut learner,
-        &traj,
-        &axes,
-        &cfg,
-        &mut evaluate,
-        &mut (),
-    )
-    .unwrap()
-    .run()
-    .unwrap()
+    Trainer::new(sim, learner, traj, &axes, cfg, &mut evaluate, &mut ())
+        .unwrap()
+        .run()
+        .unwrap()
 }
 
 /// With a limit of a quarter of the largest on-policy step of the same run without it, no
