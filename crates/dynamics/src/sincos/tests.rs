@@ -71,7 +71,7 @@ fn within_one_ulp_of_the_standard_library() {
 
 /// `cargo test --release -p osrl-dynamics sincos -- --ignored --nocapture`: 10⁸ angles.
 #[test]
-#[ignore = "long: 10^8 angles"]
+#[ignore = "long: 10^8 angles (about 7 s); .ci/run runs it"]
 fn sweep_many_angles() {
     let xs = angles(100_000_000, 2);
     let (s, c) = max_ulps(&xs);
