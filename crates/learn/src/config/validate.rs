@@ -71,6 +71,10 @@ impl LearnerConfig {
                     g.max_velocity, g.max_acceleration
                 )
             })?;
+            let r = g.posture_radius;
+            ensure(r.is_finite() && r > 0.0, || {
+                format!("gravity.static_gate.posture_radius {r} must be finite and > 0 (rad)")
+            })?;
         }
         let w = self.gravity.dynamic_weight;
         ensure(finite_at_least(w, 0.0), || {

@@ -11,7 +11,10 @@
 //! babbling, seeds 0/1/2: 0.08–0.10 N·m RMS error inside the babbling region against 0.47–0.50
 //! N·m for the dynamic model).
 
+mod budget;
+
 use crate::error::Result;
+use budget::PostureBudget;
 use lwpr::{Lwpr, LwprConfig, LwprError, Norm};
 use serde::{Deserialize, Serialize};
 
@@ -26,6 +29,8 @@ pub struct GravityModel {
     velocity_scale: f64,
     /// Static variant: learn only from still samples, regress on `q` alone.
     gate: Option<StaticGate>,
+    /// Static variant: the still samples admitted per posture so far (`StaticGate::max_samples_per_posture`).
+    budget: PostureBudget,
     #[serde(skip)]
     x: Vec<f64>,
 }
@@ -38,6 +43,14 @@ pub struct StaticGate {
     pub max_velocity: f64,
     /// Largest joint acceleration (rad/s², from `Δq̇/dt`). Default 0.1.
     pub max_acceleration: f64,
+    /// Still samples learned per posture (`posture_radius` apart), the rest ignored; 0: all.
+    /// Default 250 (0.5 s at 2 ms): the arm rests at home between every two episodes,
+    /// and home's repeated samples, which carry no slope, would otherwise outweigh the other
+    /// postures and drift `ĝ` (`budget.rs`).
+    pub max_samples_per_posture: u32,
+    /// Radius of a posture for `max_samples_per_posture` (rad, every joint). Default 0.02: above
+    /// the hold's settle tolerance, a tenth of the gravity model's kernel width.
+    pub posture_radius: f64,
 }
 
 impl Default for StaticGate {
@@ -45,6 +58,8 @@ impl Default for StaticGate {
         Self {
             max_velocity: 0.01,
             max_acceleration: 0.1,
+            max_samples_per_posture: 250,
+            posture_radius: 0.02,
         }
     }
 }
@@ -107,6 +122,7 @@ impl GravityModel {
             products,
             velocity_scale,
             gate: None,
+            budget: PostureBudget::default(),
             x: vec![0.0; d],
         })
     }
@@ -161,7 +177,14 @@ impl GravityModel {
             let still = (0..n).all(|i| {
                 self.x[n + i].abs() < g.max_velocity && self.x[2 * n + i].abs() < g.max_acceleration
             });
-            if !still {
+            let admitted = still
+                && (g.max_samples_per_posture == 0
+                    || self.budget.admit(
+                        &self.x[..n],
+                        g.posture_radius,
+                        g.max_samples_per_posture,
+                    ));
+            if !admitted {
                 return Ok(());
             }
         }
@@ -226,46 +249,13 @@ impl GravityModel {
     pub fn n_rfs(&self) -> usize {
         self.lwpr.n_rfs_total()
     }
+
+    /// Static variant: the number of postures its still samples came from (0 for the dynamic
+    /// model, or with no budget).
+    pub fn n_postures(&self) -> usize {
+        self.budget.len()
+    }
 }
 
 #[cfg(test)]
-mod tests {
-    use super::{GravityModel, StaticGate};
-    use lwpr::{LwprConfig, MetricInit};
-
-    /// The static model learns `g(q)` from still samples and ignores moving ones, however wrong
-    /// their torques.
-    #[test]
-    fn static_model_learns_from_still_samples_only() {
-        let g = |q: &[f64]| [3.0 + 2.0 * q[0] - q[1], -1.0 + 0.5 * q[0] + 4.0 * q[1]];
-        let cfg = LwprConfig {
-            init_d: MetricInit::Scalar(1.0),
-            update_d: false,
-            ..LwprConfig::default()
-        };
-        let mut m = GravityModel::new_static(2, &cfg, StaticGate::default(), 1.0, 1.0, &[1.0, 1.0])
-            .unwrap();
-        assert!(m.is_static());
-        let dt = 0.002;
-        for k in 0..4000 {
-            let q = [0.3 * (k as f64 * 0.37).sin(), 0.3 * (k as f64 * 0.23).cos()];
-            // Every other sample moves (q̇ = 1 rad/s) and carries a torque far from g(q).
-            let moving = k % 2 == 1;
-            let v = if moving { 1.0 } else { 0.0 };
-            let q1 = [q[0] + v * dt, q[1]];
-            let u = if moving { [50.0, -50.0] } else { g(&q) };
-            m.learn(&q, &[v, 0.0], &q1, &[v, 0.0], &u, dt).unwrap();
-        }
-        let mut out = [0.0; 2];
-        for q in [[0.1, -0.2], [-0.25, 0.15], [0.0, 0.0]] {
-            assert!(m.predict(&q, &mut out).unwrap());
-            let want = g(&q);
-            for i in 0..2 {
-                assert!(
-                    (out[i] - want[i]).abs() < 1e-2,
-                    "ĝ({q:?}) = {out:?}, want {want:?}"
-                );
-            }
-        }
-    }
-}
+mod tests;
