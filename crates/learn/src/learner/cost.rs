@@ -2,7 +2,7 @@
 //! the paper's `r = ‖u − u0‖²` (`N = I`) or its avoidable part `‖(I − Â⁺Â)(u − u0)‖²`, and the
 //! target `u − u0` moved towards the task-space part of itself.
 
-use super::metric::{null_space_cost_in, project_null_in, Metric};
+use super::metric::{null_space_cost_in, project_scratch_z, Metric};
 use super::stats::Scratch;
 use crate::config::{CostKind, LearnerConfig};
 
@@ -49,17 +49,8 @@ pub(crate) fn shrink_target(kappa: f64, metric: Option<&Metric>, ws: &mut Scratc
     if kappa <= 0.0 {
         return;
     }
-    let m = ws.y.len();
     ws.z.copy_from_slice(&ws.du);
-    if project_null_in(
-        metric,
-        &ws.a_hat,
-        &mut ws.z,
-        m,
-        &mut ws.y,
-        &mut ws.s,
-        &mut ws.a_n,
-    ) {
+    if project_scratch_z(metric, ws) {
         for (t, z) in ws.target.iter_mut().zip(&ws.z) {
             *t -= kappa * z;
         }

@@ -11,6 +11,7 @@
 
 use super::inertia::inverse_inertia_matrix;
 use super::null_space::{null_space_cost, project_null};
+use super::stats::Scratch;
 use nalgebra::DMatrix;
 use osrl_dynamics::Measurement;
 use serde::{Deserialize, Serialize};
@@ -146,6 +147,21 @@ pub(crate) fn null_space_cost_in(
     v_n.copy_from_slice(du);
     metric.lt_mul(v_n);
     null_space_cost(a_n, v_n, m, y, s)
+}
+
+/// `ws.z ← (I − Â⁺Â) ws.z` in the metric, with `Â` in `ws.a_hat`: [`project_null_in`] on the
+/// scratch; `false` (`ws.z` unchanged up to round-off) if `Â N⁻¹ Âᵀ` is singular.
+pub(crate) fn project_scratch_z(metric: Option<&Metric>, ws: &mut Scratch) -> bool {
+    let m = ws.y.len();
+    project_null_in(
+        metric,
+        &ws.a_hat,
+        &mut ws.z,
+        m,
+        &mut ws.y,
+        &mut ws.s,
+        &mut ws.a_n,
+    )
 }
 
 /// `z ← z − N⁻¹ Âᵀ (Â N⁻¹ Âᵀ)⁻¹ Â z`: [`project_null`] in the metric; `false` (z unchanged up

@@ -3,7 +3,7 @@
 //! blended `Â`, `ū ← ū − κ_c (I − Â⁺Â) ū` — the same task acceleration to first order, in the
 //! minimum-norm form of eq. 7's `u* − u0`.
 
-use super::metric::project_null_in;
+use super::metric::project_scratch_z;
 use super::{Learner, State};
 
 impl Learner {
@@ -23,17 +23,7 @@ impl Learner {
             return;
         }
         ws.z.copy_from_slice(u);
-        let m = ws.y.len();
-        let metric = models.metric.as_ref();
-        if project_null_in(
-            metric,
-            &ws.a_hat,
-            &mut ws.z,
-            m,
-            &mut ws.y,
-            &mut ws.s,
-            &mut ws.a_n,
-        ) {
+        if project_scratch_z(models.metric.as_ref(), ws) {
             for (v, z) in u.iter_mut().zip(&ws.z) {
                 *v -= kc * z;
             }
