@@ -119,6 +119,7 @@ impl Learner {
         learner.state = match s.models {
             Some(mut models) => {
                 models.restore_buffers();
+                models.check_loaded()?;
                 State::Ready(Box::new(models))
             }
             None => State::WarmUp(s.warm_up),

@@ -65,16 +65,7 @@ impl LearnerConfig {
             format!("partition.velocity_scale {vs:e} must be within [{lo:e}, {hi:e}] (rad/s)")
         })?;
         if let Some(g) = &self.gravity.static_gate {
-            ensure(g.max_velocity > 0.0 && g.max_acceleration > 0.0, || {
-                format!(
-                    "gravity.static_gate limits must be > 0, got {} rad/s and {} rad/s²",
-                    g.max_velocity, g.max_acceleration
-                )
-            })?;
-            let r = g.posture_radius;
-            ensure(r.is_finite() && r > 0.0, || {
-                format!("gravity.static_gate.posture_radius {r} must be finite and > 0 (rad)")
-            })?;
+            g.validate().map_err(LearnError::InvalidConfig)?;
         }
         let w = self.gravity.dynamic_weight;
         ensure(finite_at_least(w, 0.0), || {

@@ -12,8 +12,11 @@
 //! N·m for the dynamic model).
 
 mod budget;
+mod gate;
 
-use crate::error::Result;
+pub use gate::StaticGate;
+
+use crate::error::{LearnError, Result};
 use budget::PostureBudget;
 use lwpr::{Lwpr, LwprConfig, LwprError, Norm};
 use serde::{Deserialize, Serialize};
@@ -29,39 +32,11 @@ pub struct GravityModel {
     velocity_scale: f64,
     /// Static variant: learn only from still samples, regress on `q` alone.
     gate: Option<StaticGate>,
-    /// Static variant: the still samples admitted per posture so far (`StaticGate::max_samples_per_posture`).
+    /// Static variant: the still samples learned per posture so far
+    /// (`StaticGate::max_samples_per_posture`).
     budget: PostureBudget,
     #[serde(skip)]
     x: Vec<f64>,
-}
-
-/// Which samples count as still for the static gravity model: every joint below both limits.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct StaticGate {
-    /// Largest joint speed (rad/s). Default 0.01.
-    pub max_velocity: f64,
-    /// Largest joint acceleration (rad/s², from `Δq̇/dt`). Default 0.1.
-    pub max_acceleration: f64,
-    /// Still samples learned per posture (`posture_radius` apart), the rest ignored; 0: all.
-    /// Default 250 (0.5 s at 2 ms): the arm rests at home between every two episodes,
-    /// and home's repeated samples, which carry no slope, would otherwise outweigh the other
-    /// postures and drift `ĝ` (`budget.rs`).
-    pub max_samples_per_posture: u32,
-    /// Radius of a posture for `max_samples_per_posture` (rad, every joint). Default 0.02: above
-    /// the hold's settle tolerance, a tenth of the gravity model's kernel width.
-    pub posture_radius: f64,
-}
-
-impl Default for StaticGate {
-    fn default() -> Self {
-        Self {
-            max_velocity: 0.01,
-            max_acceleration: 0.1,
-            max_samples_per_posture: 250,
-            posture_radius: 0.02,
-        }
-    }
 }
 
 /// Number of regressors: `q, q̇, q̈` and, with `products`, the `n(n+1)/2` products `q̇ᵢq̇ⱼ`.
@@ -157,7 +132,13 @@ impl GravityModel {
     }
 
     /// Learns from one transition: the command `u` held while the state went from `(q0, q̇0)` to
-    /// `(q1, q̇1)` over `dt` seconds; the sample is the midpoint state with `q̈ = Δq̇ / dt`.
+    /// `(q1, q̇1)` over `dt` seconds; the sample is the midpoint state with `q̈ = Δq̇ / dt`. The
+    /// static variant ignores samples that are not still, and those of a posture whose budget
+    /// is spent ([`StaticGate::max_samples_per_posture`]).
+    ///
+    /// # Errors
+    /// The LWPR update's error (non-finite or out-of-range input or torque); the model, and the
+    /// static variant's budget, are then unchanged.
     pub fn learn(
         &mut self,
         q0: &[f64],
@@ -173,19 +154,22 @@ impl GravityModel {
             self.x[n + i] = 0.5 * (qd0[i] + qd1[i]);
             self.x[2 * n + i] = (qd1[i] - qd0[i]) / dt;
         }
+        let mut slot = None;
         if let Some(g) = self.gate {
             let still = (0..n).all(|i| {
                 self.x[n + i].abs() < g.max_velocity && self.x[2 * n + i].abs() < g.max_acceleration
             });
-            let admitted = still
-                && (g.max_samples_per_posture == 0
-                    || self.budget.admit(
-                        &self.x[..n],
-                        g.posture_radius,
-                        g.max_samples_per_posture,
-                    ));
-            if !admitted {
+            if !still {
                 return Ok(());
+            }
+            if g.max_samples_per_posture > 0 {
+                match self
+                    .budget
+                    .slot(&self.x[..n], g.posture_radius, g.max_samples_per_posture)
+                {
+                    Some(s) => slot = Some(s),
+                    None => return Ok(()),
+                }
             }
         }
         if self.products {
@@ -199,6 +183,9 @@ impl GravityModel {
             }
         }
         self.lwpr.update(&self.x, u)?;
+        if let Some(s) = slot {
+            self.budget.count(s, &self.x[..n]);
+        }
         Ok(())
     }
 
@@ -238,6 +225,21 @@ impl GravityModel {
     /// Re-creates the skipped query buffers after deserialisation.
     pub(crate) fn restore_buffers(&mut self) {
         self.x = vec![0.0; n_inputs(self.n, self.products)];
+    }
+
+    /// Checks what a loaded file says beyond its LWPR model: the static gate's ranges and the
+    /// budget's postures (`n` values each, finite).
+    ///
+    /// # Errors
+    /// [`LearnError::Load`] naming what is inconsistent.
+    pub(crate) fn check_loaded(&self) -> Result<()> {
+        if let Some(g) = &self.gate {
+            g.validate()
+                .map_err(|e| LearnError::Load(format!("static gravity gate: {e}")))?;
+        }
+        self.budget
+            .check(self.n)
+            .map_err(|why| LearnError::Load(format!("static gravity model's postures: {why}")))
     }
 
     /// The LWPR model (read access: its receptive fields and their local regressions).

@@ -90,3 +90,45 @@ fn budget_ignores_the_repeats_of_one_posture() {
         "without a budget the repeats are learned"
     );
 }
+
+/// A still sample whose learning fails (a non-finite torque) is not counted: the budget and the
+/// model stay as they were.
+#[test]
+fn a_failed_update_leaves_the_budget_unchanged() {
+    let cfg = LwprConfig {
+        init_d: MetricInit::Scalar(1.0),
+        update_d: false,
+        ..LwprConfig::default()
+    };
+    let mut m =
+        GravityModel::new_static(2, &cfg, StaticGate::default(), 1.0, 1.0, &[1.0, 1.0]).unwrap();
+    let q = [0.1, 0.2];
+    assert!(m
+        .learn(&q, &[0.0; 2], &q, &[0.0; 2], &[f64::NAN, 1.0], 0.002)
+        .is_err());
+    assert_eq!((m.n_postures(), m.n_rfs()), (0, 0));
+    m.learn(&q, &[0.0; 2], &q, &[0.0; 2], &[1.0, 1.0], 0.002)
+        .unwrap();
+    assert_eq!((m.n_postures(), m.n_rfs()), (1, 1));
+}
+
+/// The gate's ranges are checked where a configuration is validated, naming the field.
+#[test]
+fn a_bad_gate_is_refused_naming_the_field() {
+    assert!(StaticGate::default().validate().is_ok());
+    for radius in [0.0, -0.1, f64::NAN, f64::INFINITY] {
+        let mut cfg = crate::learner::fixture::config();
+        assert!(cfg.validate(3).is_ok());
+        cfg.gravity.static_gate = Some(StaticGate {
+            posture_radius: radius,
+            ..StaticGate::default()
+        });
+        let e = cfg.validate(3).unwrap_err().to_string();
+        assert!(e.contains("static_gate.posture_radius"), "{e}");
+    }
+    let gate = StaticGate {
+        max_acceleration: f64::NAN,
+        ..StaticGate::default()
+    };
+    assert!(gate.validate().unwrap_err().contains("max_acceleration"));
+}

@@ -127,6 +127,18 @@ impl Models {
         self.forward.restore_buffers();
     }
 
+    /// Checks what a loaded file says beyond its LWPR models (the static gravity model's gate
+    /// and postures).
+    ///
+    /// # Errors
+    /// [`crate::LearnError::Load`] naming what is inconsistent.
+    pub fn check_loaded(&self) -> Result<()> {
+        match &self.gravity_static {
+            Some(g) => g.check_loaded(),
+            None => Ok(()),
+        }
+    }
+
     /// `Â = Σ w_i Â_i(q) / Σ w_i` (m×n row-major into `a`) over the activations `acts` of fields
     /// whose local dynamics have been fitted; `false` if there is none.
     pub fn blended_gain(
