@@ -131,7 +131,8 @@ pub struct ControllerConfig {
     /// minimum-norm form eq. 7's `u* − u0` has. The hindsight targets already have that form;
     /// what the blend of several fields, targets shrunk with an older `Â`, and the regression's
     /// own error add in the null space is removed (`docs/decisions.md`, D20). 0: the plain blend
-    /// (eq. 34). Default 0: it lowers planar3's nMSE on every seed but raises sarcos7's.
+    /// (eq. 34). Default 0: half the projection lowers both robots' nMSE, but it made a
+    /// barely trained controller diverge when it went on learning (D31).
     pub command_projection: f64,
     /// Bound on each local controller's learned velocity gain on its own joint
     /// (`docs/decisions.md`, D21): the net damping `K_D,j − β_{q̇_j, j}` stays within
