@@ -10,7 +10,7 @@ install example-robot-data==6.0.0`; the committed fixtures folder
 `crates/dynamics/tests/fixtures/example-robot-data` holds the arms that need no subfolder there).
 
 For each robot with an arm chain (ARMS below; legged robots, drones and hands without an arm are
-listed in NOT_ARMS and only checked to be refused):
+listed in NOT_ARMS and only checked to be refused: step 1 alone, a third table):
 1. `osrl robot --robot F [--tip T] --json`: DOF and tip (or the refusal's message);
 2. `osrl simulate --robot F [--tip T] --json`: eq. 7 (`N = I`, true model) on the profile's default
    figure-8, 12 s;
@@ -67,6 +67,28 @@ ARMS = [
     ("alex", "alex_description/urdf/alex_nub_hands.urdf", ["--tip", "RightGripperYawLink"], "right arm"),
     ("human", "human_description/robots/human.urdf", ["--tip", "right_hand"], "right arm, base fixed"),
     ("simple_humanoid", "simple_humanoid_description/urdf/simple_humanoid.urdf", ["--tip", "r_wrist"], "right arm, base fixed"),
+]
+
+# Robots without an arm chain (legs, rotors, fingers): only `osrl robot` runs, which should refuse them.
+NOT_ARMS = [
+    ("a1", "a1_description/urdf/a1.urdf"),
+    ("alexander_lower_body", "alexander_description/urdf/alexander_v1.lowerBodyOnly.urdf"),
+    ("allegro_left_hand", "allegro_hand_description/urdf/allegro_left_hand.urdf"),
+    ("allegro_right_hand", "allegro_hand_description/urdf/allegro_right_hand.urdf"),
+    ("anymal_b", "anymal_b_simple_description/robots/anymal.urdf"),
+    ("anymal_c", "anymal_c_simple_description/urdf/anymal.urdf"),
+    ("b1", "b1_description/urdf/b1.urdf"),
+    ("bolt", "bolt_description/robots/bolt.urdf"),
+    ("go1", "go1_description/urdf/go1.urdf"),
+    ("go2", "go2_description/urdf/go2.urdf"),
+    ("hector", "hector_description/robots/quadrotor_base.urdf"),
+    ("hyq", "hyq_description/robots/hyq_no_sensors.urdf"),
+    ("iris", "iris_description/robots/iris.urdf"),
+    ("iris_simple", "iris_description/robots/iris_simple.urdf"),
+    ("laikago", "laikago_description/urdf/laikago.urdf"),
+    ("quadruped", "quadruped_description/urdf/quadruped.urdf"),
+    ("solo", "solo_description/robots/solo.urdf"),
+    ("solo12", "solo_description/robots/solo12.urdf"),
 ]
 
 
@@ -141,6 +163,24 @@ def fmt_train(t):
             f"rejected {100 * t.get('rejected_share', 0):.3g} %{best}{stage})")
 
 
+def check_not_arm(args, name, rel):
+    """`osrl robot` on a robot without an arm: the refusal's message, or what it loaded as."""
+    f = os.path.join(args.robots, rel)
+    rc, last, err = run([args.osrl, "robot", "--robot", f, "--json"], os.path.join(args.runs, name + ".robot"))
+    if rc != 0:
+        return {"name": name, "file": rel, "refused": error_text(err, args.robots)}
+    info = json.loads(last)
+    return {"name": name, "file": rel,
+            "loaded": f"loads (not refused): {info['dof']} DOF, tip `{info['profile'].get('tip')}`"}
+
+
+def not_arms_table(rows):
+    out = ["| robot (file) | `osrl robot` |", "|---|---|"]
+    for r in rows:
+        out.append(f"| {r['name']} (`{os.path.basename(r['file'])}`) | {r.get('refused') or r['loaded']} |")
+    return "\n".join(out)
+
+
 def table(rows):
     """Two Markdown tables: the robots that load and track (eq. 7, learned), the refused ones."""
     out = ["| robot (file, options) | DOF | tip | eq. 7 RMS (mm) | learned |",
@@ -175,7 +215,16 @@ def main():
             continue
         print(f"{name} ...", file=sys.stderr, flush=True)
         rows.append(measure(args, name, rel, opts))
+    others = []
+    for name, rel in NOT_ARMS:
+        if args.only and name not in args.only:
+            continue
+        print(f"{name} (not an arm) ...", file=sys.stderr, flush=True)
+        others.append(check_not_arm(args, name, rel))
     print(table(rows))
+    if others:
+        print("\nNot arms (only `osrl robot`, which should refuse them):\n")
+        print(not_arms_table(others))
 
 
 if __name__ == "__main__":
