@@ -3,18 +3,22 @@
 use super::{GravityModel, StaticGate};
 use lwpr::{LwprConfig, MetricInit};
 
-/// The static model learns `g(q)` from still samples and ignores moving ones, however wrong
-/// their torques.
-#[test]
-fn static_model_learns_from_still_samples_only() {
-    let g = |q: &[f64]| [3.0 + 2.0 * q[0] - q[1], -1.0 + 0.5 * q[0] + 4.0 * q[1]];
+/// A static model of 2 joints with wide fixed kernels and unit scales.
+fn static_model(gate: StaticGate) -> GravityModel {
     let cfg = LwprConfig {
         init_d: MetricInit::Scalar(1.0),
         update_d: false,
         ..LwprConfig::default()
     };
-    let mut m =
-        GravityModel::new_static(2, &cfg, StaticGate::default(), 1.0, 1.0, &[1.0, 1.0]).unwrap();
+    GravityModel::new_static(2, &cfg, gate, 1.0, 1.0, &[1.0, 1.0]).unwrap()
+}
+
+/// The static model learns `g(q)` from still samples and ignores moving ones, however wrong
+/// their torques.
+#[test]
+fn static_model_learns_from_still_samples_only() {
+    let g = |q: &[f64]| [3.0 + 2.0 * q[0] - q[1], -1.0 + 0.5 * q[0] + 4.0 * q[1]];
+    let mut m = static_model(StaticGate::default());
     assert!(m.is_static());
     let dt = 0.002;
     for k in 0..4000 {
@@ -43,16 +47,10 @@ fn static_model_learns_from_still_samples_only() {
 /// that is off by the `M q̈` of the gate's jitter.
 fn repeated_home(repeats: usize, cap: u32) -> GravityModel {
     let g = |q: &[f64]| [3.0 + 2.0 * q[0] - q[1], -1.0 + 0.5 * q[0] + 4.0 * q[1]];
-    let cfg = LwprConfig {
-        init_d: MetricInit::Scalar(1.0),
-        update_d: false,
-        ..LwprConfig::default()
-    };
-    let gate = StaticGate {
+    let mut m = static_model(StaticGate {
         max_samples_per_posture: cap,
         ..StaticGate::default()
-    };
-    let mut m = GravityModel::new_static(2, &cfg, gate, 1.0, 1.0, &[1.0, 1.0]).unwrap();
+    });
     let dt = 0.002;
     for k in 0..2000 {
         let q = [0.3 * (k as f64 * 0.37).sin(), 0.3 * (k as f64 * 0.23).cos()];
@@ -95,13 +93,7 @@ fn budget_ignores_the_repeats_of_one_posture() {
 /// model stay as they were.
 #[test]
 fn a_failed_update_leaves_the_budget_unchanged() {
-    let cfg = LwprConfig {
-        init_d: MetricInit::Scalar(1.0),
-        update_d: false,
-        ..LwprConfig::default()
-    };
-    let mut m =
-        GravityModel::new_static(2, &cfg, StaticGate::default(), 1.0, 1.0, &[1.0, 1.0]).unwrap();
+    let mut m = static_model(StaticGate::default());
     let q = [0.1, 0.2];
     assert!(m
         .learn(&q, &[0.0; 2], &q, &[0.0; 2], &[f64::NAN, 1.0], 0.002)
