@@ -72,6 +72,9 @@ pub fn run(a: Args) -> Result<()> {
                 .map_or("config".into(), |p| p.display().to_string())
         );
     }
+    if let Some(p) = a.config.as_deref() {
+        refuse_saved_learner_sections(p)?;
+    }
     cfg.validate()?;
     let saved = SavedModel::load(&a.model)?;
     crate::util::check_out_file("--out", &a.out)?;
@@ -192,4 +195,29 @@ fn adapt_json(r: &Adapted, change: &RobotChange, robot: &str) -> Result<serde_js
         o.insert(k.clone(), v.clone());
     }
     Ok(j)
+}
+
+/// Refuses `[learner.*]` tables other than `[learner.adaptation]` in `path`: the rest of the
+/// learner's configuration is the saved controller's, and a setting that would be ignored
+/// silently is an error instead.
+fn refuse_saved_learner_sections(path: &std::path::Path) -> Result<()> {
+    let table: toml::Table = crate::util::read_toml(path)?;
+    let Some(learner) = table.get("learner").and_then(|v| v.as_table()) else {
+        return Ok(());
+    };
+    let ignored: Vec<&str> = learner
+        .keys()
+        .map(String::as_str)
+        .filter(|k| *k != "adaptation")
+        .collect();
+    if !ignored.is_empty() {
+        bail!(
+            "{}: [learner] {} would be ignored by `osrl adapt`: the learner's settings are the \
+             saved controller's (only [learner.adaptation] is read); remove {}",
+            path.display(),
+            ignored.join(", "),
+            if ignored.len() == 1 { "it" } else { "them" }
+        );
+    }
+    Ok(())
 }

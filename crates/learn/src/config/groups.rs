@@ -130,9 +130,10 @@ pub struct ControllerConfig {
     /// command), `ū ← ū − κ_c (I − Â⁺Â) ū`: the same task acceleration to first order, the
     /// minimum-norm form eq. 7's `u* − u0` has. The hindsight targets already have that form;
     /// what the blend of several fields, targets shrunk with an older `Â`, and the regression's
-    /// own error add in the null space is removed (`docs/decisions.md`, D20). 0: the plain blend
-    /// (eq. 34). Default 0: half the projection lowers both robots' nMSE, but it made a
-    /// barely trained controller diverge when it went on learning (D31).
+    /// own error add in the null space is removed (`docs/decisions.md`, D20). `Â` is blended
+    /// with the command's own weights, so the projector moves continuously as fields join.
+    /// 0: the plain blend (eq. 34). Default 0.5: half the projection, the share at which the
+    /// built-in arms' command error falls without more braked episodes (D31, D32).
     pub command_projection: f64,
     /// Bound on each local controller's learned velocity gain on its own joint
     /// (`docs/decisions.md`, D21): the net damping `K_D,j − β_{q̇_j, j}` stays within
@@ -358,7 +359,7 @@ impl Default for ControllerConfig {
             reward_weighting: true,
             cost: CostKind::NullSpace,
             null_space_shrink: 1.0,
-            command_projection: 0.0,
+            command_projection: 0.5,
             damping_bound: 0.0,
             step_spread: 1,
             metric: None,

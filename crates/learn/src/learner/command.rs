@@ -232,6 +232,7 @@ mod tests {
     fn a_one_field_blend_equals_that_fields_mean_plus_u0() {
         let mut cfg = fixture::config();
         cfg.controllers.trained_ess = 1e8;
+        cfg.controllers.command_projection = 0.0; // eq. 34 as it is (`projection.rs` tests it)
         let (mut learner, _, last) = fixture::ready(cfg, 200, 0);
         let (q, qd) = (last.q.as_slice().to_vec(), last.qd.as_slice().to_vec());
         let xdd = [0.3, -0.2];

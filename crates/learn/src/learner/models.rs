@@ -148,6 +148,36 @@ impl Models {
         q: &[f64],
         a: &mut [f64],
     ) -> bool {
+        self.weighted_gain(features, acts, q, a, |_, w| w)
+    }
+
+    /// `Â` of the command's blend (eq. 34's weights): as [`Self::blended_gain`] with the weight
+    /// `c_i (w_i − cutoff)` of `command.rs`'s blend (confidence `c_i` from the controller's
+    /// effective sample size against `trained_ess`), so a field enters the `Â` continuously, as
+    /// it enters the command, and an untrained controller's field has no say in it.
+    pub fn command_gain(
+        &self,
+        features: &super::Features,
+        acts: &[lwpr::Activation],
+        q: &[f64],
+        (cutoff, trained_ess): (f64, f64),
+        a: &mut [f64],
+    ) -> bool {
+        self.weighted_gain(features, acts, q, a, |local, w| {
+            crate::local::confidence(local.ess, trained_ess) * (w - cutoff)
+        })
+    }
+
+    /// `Σ v_i Â_i(q) / Σ v_i` with `v_i = weight(local_i, w_i)` over the fields with fitted
+    /// local dynamics and `v_i > 0`; `false` if there is none.
+    fn weighted_gain(
+        &self,
+        features: &super::Features,
+        acts: &[lwpr::Activation],
+        q: &[f64],
+        a: &mut [f64],
+        weight: impl Fn(&crate::local::Local, f64) -> f64,
+    ) -> bool {
         a.fill(0.0);
         let mut sum_w = 0.0;
         for act in acts {
@@ -157,8 +187,12 @@ impl Models {
             if local.dynamics_updates == 0 {
                 continue;
             }
-            features.add_gain(local.dynamics.theta(), q, &local.center, act.w, a);
-            sum_w += act.w;
+            let w = weight(local, act.w);
+            if !(w > 0.0) {
+                continue;
+            }
+            features.add_gain(local.dynamics.theta(), q, &local.center, w, a);
+            sum_w += w;
         }
         if sum_w <= 0.0 {
             return false;

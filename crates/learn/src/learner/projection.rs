@@ -1,15 +1,17 @@
 //! The command projection (`controllers.command_projection`, `docs/decisions.md` D20): the
 //! learned part `ū` of the command loses the share `κ_c` of its part in the null space of the
 //! blended `Â`, `ū ← ū − κ_c (I − Â⁺Â) ū` — the same task acceleration to first order, in the
-//! minimum-norm form of eq. 7's `u* − u0`.
+//! minimum-norm form of eq. 7's `u* − u0`. `Â` is blended with the command's own weights
+//! (`Models::command_gain`, D32), so the projector moves continuously as fields enter the blend.
 
 use super::metric::project_scratch_z;
 use super::{Learner, State};
 
 impl Learner {
     /// The command projection (`controllers.command_projection`): the learned part `ū` in `u`
-    /// loses the share `κ_c` of its part in the null space of the blended `Â` at `q` (active
-    /// fields in `ws.acts`); unchanged without an `Â` or with a singular `Â Âᵀ`.
+    /// loses the share `κ_c` of its part in the null space of the `Â` blended at `q` with the
+    /// command's weights (active fields in `ws.acts`); unchanged without an `Â` or with a
+    /// singular `Â Âᵀ`.
     pub(super) fn project_command(&mut self, q: &[f64], u: &mut [f64]) {
         let kc = self.cfg.controllers.command_projection;
         let State::Ready(models) = &self.state else {
@@ -19,7 +21,11 @@ impl Learner {
             return;
         }
         let ws = &mut self.ws;
-        if !models.blended_gain(&self.features, &ws.acts, q, &mut ws.a_hat) {
+        let weights = (
+            self.cfg.partition.activation_cutoff,
+            self.cfg.controllers.trained_ess,
+        );
+        if !models.command_gain(&self.features, &ws.acts, q, weights, &mut ws.a_hat) {
             return;
         }
         ws.z.copy_from_slice(u);
@@ -35,8 +41,8 @@ impl Learner {
 mod tests {
     use crate::learner::fixture;
 
-    /// `Â (u − u0)`, the null-space part under `Â` of `u − u0` and `|u − u0|` for the command
-    /// (no exploration) of `learner` at its last state with `κ_c = kc`.
+    /// `Â (u − u0)`, the null-space part under `Â` (the command's blend of it) of `u − u0` and
+    /// `|u − u0|` for the command (no exploration) of `learner` at its last state with `κ_c = kc`.
     fn task_and_null(
         learner: &mut crate::Learner,
         last: &osrl_dynamics::Measurement,
@@ -50,7 +56,18 @@ mod tests {
             .command::<rand_chacha::ChaCha8Rng>(&q, &qd, &[0.3, -0.2], None, &mut u)
             .unwrap();
         learner.nominal(&q, &qd, &mut u0).unwrap();
-        assert!(learner.input_gain(&q, &qd, &mut a).unwrap());
+        let weights = (
+            learner.cfg.partition.activation_cutoff,
+            learner.cfg.controllers.trained_ess,
+        );
+        let features = learner.features.clone();
+        let models = fixture::models(learner);
+        let mut acts = Vec::new();
+        models
+            .forward
+            .activations(&q, &qd, weights.0, &mut acts)
+            .unwrap();
+        assert!(models.command_gain(&features, &acts, &q, weights, &mut a));
         let du: Vec<f64> = (0..3).map(|j| u[j] - u0[j]).collect();
         let task: Vec<f64> = (0..2)
             .map(|k| (0..3).map(|j| a[k * 3 + j] * du[j]).sum())
@@ -87,5 +104,52 @@ mod tests {
                 "{task0:?} vs {task1:?}"
             );
         }
+    }
+
+    /// The projection's `Â` has the command's weights: a field at the activation cutoff (where
+    /// it enters the command's blend with weight 0) changes it by nothing, where the plain
+    /// activation-weighted blend jumps by its full `Â` — the step D32 removed.
+    #[test]
+    fn a_field_at_the_cutoff_has_no_say_in_the_projections_gain() {
+        let (mut learner, _, last) = fixture::ready(fixture::config(), 200, 2000);
+        let q = last.q.as_slice().to_vec();
+        let cut = learner.cfg.partition.activation_cutoff;
+        let weights = (cut, learner.cfg.controllers.trained_ess);
+        let features = learner.features.clone();
+        let models = fixture::models(&mut learner);
+        let mut acts = Vec::new();
+        models
+            .forward
+            .activations(&q, last.qd.as_slice(), cut, &mut acts)
+            .unwrap();
+        // A trained field with fitted dynamics that is not active here, put at the cutoff.
+        let far = models
+            .locals
+            .map
+            .iter()
+            .find(|(id, l)| {
+                l.dynamics_updates > 0
+                    && crate::local::confidence(l.ess, weights.1) > 0.0
+                    && !acts.iter().any(|a| a.id == **id)
+            })
+            .map(|(id, _)| *id)
+            .expect("a trained field elsewhere");
+        let (mut a0, mut a1, mut b0, mut b1) = ([0.0; 6], [0.0; 6], [0.0; 6], [0.0; 6]);
+        assert!(models.command_gain(&features, &acts, &q, weights, &mut a0));
+        assert!(models.blended_gain(&features, &acts, &q, &mut b0));
+        acts.push(lwpr::Activation { id: far, w: cut });
+        assert!(models.command_gain(&features, &acts, &q, weights, &mut a1));
+        assert!(models.blended_gain(&features, &acts, &q, &mut b1));
+        assert_eq!(a0, a1, "the command's weights");
+        let jump = b0
+            .iter()
+            .zip(&b1)
+            .map(|(x, y)| (x - y).abs())
+            .fold(0.0, f64::max);
+        let size = b0.iter().map(|x| x.abs()).fold(0.0, f64::max);
+        assert!(
+            jump > 1e-3 * size,
+            "activation weights jump by {jump} (|Â| {size})"
+        );
     }
 }
