@@ -6,12 +6,13 @@
 //! published-arms table reports them.) The same run measures each joint's sweep, from which
 //! the profile chooses the learner's cost metric (`super::metric_rule`).
 
+use crate::closed_loop::Series;
 use crate::closed_loop::{run_closed_loop, Metrics};
 use crate::config::OscConfig;
 use crate::error::{ControlError, Result};
 use crate::osc::Osc;
 use crate::trajectory::Trajectory;
-use osrl_dynamics::{Model, SimConfig, SimRobot};
+use osrl_dynamics::{Model, Robot, SimConfig, SimRobot};
 
 /// Largest RMS tracking error (mm) of eq. 7 on a computed default path (issue 28's bound).
 pub const TRACKING_BOUND_MM: f64 = 0.05;
@@ -76,9 +77,10 @@ pub(super) fn eq7_sweep(
         // Without saturation or stiff friction the usual cause is a joint held at its limit.
         let limits = match m.first_limit_s {
             Some(t) => format!(
-                ", {} steps at a joint limit (the first at t = {t:.2} s: a joint the task or the \
-                 null space needs is held at its hard stop)",
-                m.limit_steps
+                ", {} steps at a joint limit (the first at t = {t:.2} s{}: a joint the task or \
+                 the null space needs is held at its hard stop)",
+                m.limit_steps,
+                joints_at_limits(model, &sim, &run.series)
             ),
             None => ", no step at a joint limit".into(),
         };
@@ -89,4 +91,82 @@ pub(super) fn eq7_sweep(
         )));
     }
     Ok(sweep)
+}
+
+/// The joints that reached a position limit in `series`, the one at the first such step first,
+/// each with its name, the limit (rad or m) and how many steps it spent there, as `"; joint 3
+/// 'elbow' at its lower limit -2.000 in 512 steps, …"` (at most three; empty if none did).
+fn joints_at_limits(model: &Model, sim: &SimRobot, series: &Series) -> String {
+    let (lo, hi) = sim.joint_limits();
+    let n = series.n;
+    let at = |q: f64, j: usize| {
+        if q - lo[j] <= 1e-9 {
+            Some(("lower", lo[j]))
+        } else if hi[j] - q <= 1e-9 {
+            Some(("upper", hi[j]))
+        } else {
+            None
+        }
+    };
+    // Per joint: steps at a limit, the first step and which limit.
+    let mut seen: Vec<(usize, usize, &str, f64)> = Vec::new();
+    for q in series.q.chunks_exact(n) {
+        for (j, &qj) in q.iter().enumerate() {
+            if let Some((side, limit)) = at(qj, j) {
+                match seen.iter_mut().find(|s| s.0 == j) {
+                    Some(s) => s.1 += 1,
+                    None => seen.push((j, 1, side, limit)),
+                }
+            }
+        }
+    }
+    let links = model.links();
+    let named: Vec<String> = seen
+        .iter()
+        .take(3)
+        .map(|&(j, steps, side, limit)| {
+            format!(
+                "joint {j} '{}' at its {side} limit {limit:.3} in {steps} steps",
+                links[j].joint_name
+            )
+        })
+        .collect();
+    if named.is_empty() {
+        return String::new();
+    }
+    let more = seen.len().saturating_sub(3);
+    let tail = if more > 0 {
+        format!(" and {more} more")
+    } else {
+        String::new()
+    };
+    format!("; {}{tail}", named.join(", "))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::trajectory_config::TrajectoryConfig;
+    use crate::{check_reachable, IkOptions};
+    use osrl_dynamics::robots;
+
+    /// planar3 with its second joint's upper limit just above the start posture: eq. 7 runs
+    /// into it, and the refusal names that joint, its limit and its steps there.
+    #[test]
+    fn a_run_into_a_joint_limit_names_the_joint() {
+        let planar = robots::planar3();
+        let traj = TrajectoryConfig::default().build(&planar).unwrap();
+        let reach = check_reachable(&planar, &traj, &IkOptions::default()).unwrap();
+        assert!(eq7_sweep(&planar, &traj, &reach.q_start, true).is_ok());
+        let mut spec = planar.spec().clone();
+        spec.links[1].limits.q_max = reach.q_start[1] + 0.01;
+        let tight = Model::new(spec).unwrap();
+        let e = eq7_sweep(&tight, &traj, &reach.q_start, true).unwrap_err();
+        let name = &planar.links()[1].joint_name;
+        let want = format!(
+            "joint 1 '{name}' at its upper limit {:.3} in ",
+            reach.q_start[1] + 0.01
+        );
+        assert!(e.to_string().contains(&want), "{e}");
+    }
 }
