@@ -122,6 +122,9 @@ pub fn plan(sizes: &Sizes) -> Vec<Job> {
         }
         jobs.extend((0..sizes.e9.seeds(robot)).map(family));
         jobs.extend((0..sizes.learned_seeds).map(|s| job(Variant::Rwr, s, false)));
+        for v in [Variant::UnweightedProjected, Variant::RwrUnprojected] {
+            jobs.extend((0..sizes.ablation_seeds).map(|s| job(v, s, false)));
+        }
         jobs.extend((0..sizes.ablation_seeds).map(|s| job(Variant::Rwr, s, true)));
         jobs.extend((0..sizes.ablation_seeds).map(|s| job(Variant::Global, s, false)));
     }
@@ -259,9 +262,9 @@ mod tests {
     fn the_plan_has_every_job_once_longest_first() {
         let sizes = Sizes::full();
         let jobs = plan(&sizes);
-        // Per robot: 3 RWR seeds, 3 variants and 1 payload run (one ablation seed each), and
+        // Per robot: 3 RWR seeds, 5 variants and 1 payload run (one ablation seed each), and
         // the family runs of E9 (planar3 3, sarcos7 1).
-        assert_eq!(jobs.len(), 18);
+        assert_eq!(jobs.len(), 22);
         assert_eq!(jobs.iter().filter(|j| j.family).count(), 4);
         for (i, a) in jobs.iter().enumerate() {
             assert!(!jobs[i + 1..].contains(a), "{a:?} twice");
@@ -279,7 +282,7 @@ mod tests {
         assert_eq!(jobs[0].robot, "sarcos7");
         assert_eq!(jobs[0].variant, Variant::Paper);
         assert_eq!(jobs[1].variant, Variant::Unweighted);
-        assert!(jobs[8..].iter().all(|j| j.robot == "planar3"));
+        assert!(jobs[10..].iter().all(|j| j.robot == "planar3"));
         assert_eq!(jobs.iter().filter(|j| j.is_reference()).count(), 2);
     }
 }

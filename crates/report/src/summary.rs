@@ -90,10 +90,14 @@ fn ablation(r: &Results) -> String {
                 )
         };
         format!(
-            "{robot} tracking: RWR {}, unweighted regression {}, global model {}",
-            row("rwr"),
+            "{robot} tracking without the command projection (as in the paper): RWR {}, \
+             unweighted regression {}, global model {}; with it (the default since D32): RWR \
+             {}, unweighted regression {}",
+            row("rwr_unprojected"),
             row("unweighted"),
-            row("global_unweighted")
+            row("global_unweighted"),
+            row("rwr"),
+            row("unweighted_projected")
         )
     };
     format!("{}; {}", part("planar3"), part("sarcos7"))
