@@ -60,7 +60,7 @@ mod tests {
             learner.cfg.partition.activation_cutoff,
             learner.cfg.controllers.trained_ess,
         );
-        let features = learner.features.clone();
+        let features = learner.features;
         let models = fixture::models(learner);
         let mut acts = Vec::new();
         models
@@ -115,7 +115,7 @@ mod tests {
         let q = last.q.as_slice().to_vec();
         let cut = learner.cfg.partition.activation_cutoff;
         let weights = (cut, learner.cfg.controllers.trained_ess);
-        let features = learner.features.clone();
+        let features = learner.features;
         let models = fixture::models(&mut learner);
         let mut acts = Vec::new();
         models
