@@ -38,7 +38,7 @@ def main():
               f"| {mean(e['command_cost_ratio'], '{:.3f}')} | {mean(e['n_local_models'], '{:.0f}')} "
               f"| {rt['min']:.1f}–{rt['max']:.1f} | {num(e['max_command_step']['max'], '{:.1f}')} "
               f"| {num(e.get('analytical_eq7_tracking_rms_mm'), '{:.3f}')} |")
-    print("\nE6 ablation (final evaluation; mean over seeds):\n")
+    print("\nE6 ablation (final evaluation of seed 0, the seed every variant has; cost ratio and local models: mean over seeds):\n")
     print("| robot | variant | tracking RMS (mm) | command nMSE | cost ratio | local models |")
     print("|---|---|---|---|---|---|")
     for robot, rows in r["E6"].items():
@@ -46,8 +46,11 @@ def main():
             if "tracking_rms_mm" not in row:
                 print(f"| {robot} | {key} | {num(row)} | | | |")
                 continue
-            cells = [mean(row[k], f) for k, f in [("tracking_rms_mm", "{:.2f}"), ("command_nmse", "{:.3f}"),
-                                                  ("command_cost_ratio", "{:.3f}"), ("n_local_models", "{:.0f}")]]
+            s0 = row["per_seed"][0]
+            first = [("diverged, " if s0.get("diverged") else "") + num(s0.get(k), f)
+                     if s0.get("evaluated") else "not evaluated"
+                     for k, f in [("tracking_rms_mm", "{:.3f}"), ("command_nmse", "{:.4f}")]]
+            cells = first + [mean(row[k], f) for k, f in [("command_cost_ratio", "{:.3f}"), ("n_local_models", "{:.0f}")]]
             print(f"| {robot} | {key} | " + " | ".join(cells) + " |")
     print("\nE7 model errors (tracking RMS, mm):\n")
     print("| robot | model error | eq. 7 with the wrong model | learned (trained on the true robot) |")

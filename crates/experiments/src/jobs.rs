@@ -100,9 +100,9 @@ impl Observer for Quiet {}
 
 /// The jobs of a run: RWR over the learned seeds, the ablation variants and the payload runs
 /// over the ablation seeds, both robots; longest first, so that no long job starts last while the
-/// other cores idle. Measured in a full run (2 cores): sarcos7's failing variants 570–890 s
-/// (`rwr_paper`, `unweighted`), its RWR and payload runs 230–300 s, its global model 50 s, every
-/// planar3 job 13–26 s.
+/// other cores idle. Measured in a full run before D32 (2 cores, 4 variants): sarcos7's failing
+/// variants 570–890 s (`rwr_paper`, `unweighted`), its RWR and payload runs 230–300 s, its
+/// global model 50 s, every planar3 job 13–26 s.
 pub fn plan(sizes: &Sizes) -> Vec<Job> {
     let mut jobs = Vec::new();
     for robot in ["sarcos7", "planar3"] {

@@ -10,7 +10,8 @@
 //!
 //! The config file's `[train]` section sets the run (its gains are replaced by the saved
 //! controller's, its babbling is skipped, evaluations come at least every 0.25 minutes) and
-//! `[learner.adaptation]` the re-adaptation; the rest of `[learner]` is the saved controller's.
+//! `[learner.adaptation]` the re-adaptation; the rest of `[learner]` is the saved controller's,
+//! and a config that sets another `[learner.*]` table is refused rather than ignored.
 //! Without a `[train]` section the episodes run the whole path from the start (no curriculum)
 //! and brake at 3 cm of task error.
 

@@ -128,12 +128,13 @@ pub struct ControllerConfig {
     /// Projection of the command `κ_c ∈ [0, 1]`: the blended learned part `ū` of the command
     /// loses the share `κ_c` of its part in the null space of the blended `Â` (computed at the
     /// command), `ū ← ū − κ_c (I − Â⁺Â) ū`: the same task acceleration to first order, the
-    /// minimum-norm form eq. 7's `u* − u0` has. The hindsight targets already have that form;
+    /// minimum-norm form eq. 7's `u* − u0` has. The hindsight targets already have that form
+    /// (shrunk with the `Â` of the plain activations);
     /// what the blend of several fields, targets shrunk with an older `Â`, and the regression's
     /// own error add in the null space is removed (`docs/decisions.md`, D20). `Â` is blended
     /// with the command's own weights, so the projector moves continuously as fields join.
     /// 0: the plain blend (eq. 34). Default 0.5: half the projection, the share at which the
-    /// built-in arms' command error falls without more braked episodes (D31, D32).
+    /// built-in arms' command error falls; the full projection brakes more episodes (D31, D32).
     pub command_projection: f64,
     /// Bound on each local controller's learned velocity gain on its own joint
     /// (`docs/decisions.md`, D21): the net damping `K_D,j − β_{q̇_j, j}` stays within

@@ -106,11 +106,13 @@ mod tests {
         }
     }
 
-    /// The projection's `Â` has the command's weights: a field at the activation cutoff (where
-    /// it enters the command's blend with weight 0) changes it by nothing, where the plain
-    /// activation-weighted blend jumps by its full `Â` — the step D32 removed.
+    /// The projection's `Â` has the command's weights: a field entering at the activation
+    /// cutoff (`w = cutoff + δ`, where LWPR starts to report it and the command's blend gives it
+    /// weight `δ`) moves it by O(δ), where the plain activation-weighted blend jumps by O(cutoff)
+    /// — the step D32 removed; and a field whose controller is untrained (confidence 0) has no
+    /// say in it at any activation.
     #[test]
-    fn a_field_at_the_cutoff_has_no_say_in_the_projections_gain() {
+    fn a_field_enters_the_projections_gain_continuously() {
         let (mut learner, _, last) = fixture::ready(fixture::config(), 200, 2000);
         let q = last.q.as_slice().to_vec();
         let cut = learner.cfg.partition.activation_cutoff;
@@ -122,34 +124,49 @@ mod tests {
             .forward
             .activations(&q, last.qd.as_slice(), cut, &mut acts)
             .unwrap();
-        // A trained field with fitted dynamics that is not active here, put at the cutoff.
-        let far = models
-            .locals
-            .map
-            .iter()
-            .find(|(id, l)| {
+        // Two trained fields with fitted dynamics that are not active here.
+        let far: Vec<_> = (models.locals.map.iter())
+            .filter(|(id, l)| {
                 l.dynamics_updates > 0
                     && crate::local::confidence(l.ess, weights.1) > 0.0
                     && !acts.iter().any(|a| a.id == **id)
             })
             .map(|(id, _)| *id)
-            .expect("a trained field elsewhere");
-        let (mut a0, mut a1, mut b0, mut b1) = ([0.0; 6], [0.0; 6], [0.0; 6], [0.0; 6]);
-        assert!(models.command_gain(&features, &acts, &q, weights, &mut a0));
-        assert!(models.blended_gain(&features, &acts, &q, &mut b0));
-        acts.push(lwpr::Activation { id: far, w: cut });
-        assert!(models.command_gain(&features, &acts, &q, weights, &mut a1));
-        assert!(models.blended_gain(&features, &acts, &q, &mut b1));
-        assert_eq!(a0, a1, "the command's weights");
-        let jump = b0
-            .iter()
-            .zip(&b1)
-            .map(|(x, y)| (x - y).abs())
-            .fold(0.0, f64::max);
-        let size = b0.iter().map(|x| x.abs()).fold(0.0, f64::max);
+            .take(2)
+            .collect();
+        assert_eq!(far.len(), 2, "two trained fields elsewhere");
+        let gains = |models: &crate::learner::Models, acts: &[lwpr::Activation]| {
+            let (mut a, mut b) = ([0.0; 6], [0.0; 6]);
+            assert!(models.command_gain(&features, acts, &q, weights, &mut a));
+            assert!(models.blended_gain(&features, acts, &q, &mut b));
+            (a, b)
+        };
+        let diff = |x: &[f64; 6], y: &[f64; 6]| {
+            (x.iter().zip(y))
+                .map(|(u, v)| (u - v).abs())
+                .fold(0.0, f64::max)
+        };
+        let (a0, b0) = gains(models, &acts);
+        let size = a0.iter().map(|x| x.abs()).fold(0.0, f64::max);
+        let delta = 1e-9;
+        let mut entering = acts.clone();
+        entering.push(lwpr::Activation {
+            id: far[0],
+            w: cut + delta,
+        });
+        let (a1, b1) = gains(models, &entering);
+        assert!(diff(&a0, &a1) <= 1e-6 * size, "{a0:?} → {a1:?}");
         assert!(
-            jump > 1e-3 * size,
-            "activation weights jump by {jump} (|Â| {size})"
+            diff(&b0, &b1) > 1e-3 * size,
+            "activation weights jump by {} (|Â| {size})",
+            diff(&b0, &b1)
         );
+        // An untrained controller's field, fully active: no say in the projection's Â.
+        models.locals.map.get_mut(&far[1]).unwrap().ess = 0.0;
+        let mut untrained = acts.clone();
+        untrained.push(lwpr::Activation { id: far[1], w: 1.0 });
+        let (a2, b2) = gains(models, &untrained);
+        assert_eq!(a0, a2, "an untrained controller's field");
+        assert!(diff(&b0, &b2) > 1e-3 * size);
     }
 }
