@@ -169,4 +169,50 @@ mod tests {
         assert_eq!(a0, a2, "an untrained controller's field");
         assert!(diff(&b0, &b2) > 1e-3 * size);
     }
+
+    /// The projected command (`κ_c` = 0.5, no exploration) along a straight line in `q`
+    /// through the partition, in steps of 1e-5 rad, while fields enter and leave the blend:
+    /// it changes by no more than the line's own slope allows — no step where a field joins
+    /// the projector. (With the plain activation weights of D31 the largest step on this line
+    /// is 0.086 N·m.)
+    #[test]
+    fn the_projected_command_is_continuous_where_fields_enter() {
+        let (mut learner, _, last) = fixture::ready(fixture::config(), 200, 2000);
+        assert_eq!(learner.cfg.controllers.command_projection, 0.5);
+        let (q0, qd) = (last.q.as_slice().to_vec(), last.qd.as_slice().to_vec());
+        let cut = learner.cfg.partition.activation_cutoff;
+        let xdd = [0.3, -0.2];
+        let (h, steps) = (1e-5, 20_000);
+        let (mut u, mut prev) = ([0.0; 3], None::<[f64; 3]>);
+        let (mut largest, mut changes, mut active) = (0.0_f64, 0, Vec::new());
+        let mut acts = Vec::new();
+        for k in 0..steps {
+            let q: Vec<f64> = (0..3)
+                .map(|j| q0[j] + [1.0, -0.6, 0.8][j] * h * k as f64)
+                .collect();
+            learner.start_episode(None); // no rate limit between the points
+            learner
+                .command::<rand_chacha::ChaCha8Rng>(&q, &qd, &xdd, None, &mut u)
+                .unwrap();
+            let models = fixture::models(&mut learner);
+            models.forward.activations(&q, &qd, cut, &mut acts).unwrap();
+            let mut ids: Vec<_> = acts.iter().map(|a| a.id).collect();
+            ids.sort();
+            if k > 0 && ids != active {
+                changes += 1;
+            }
+            active = ids;
+            if let Some(p) = prev {
+                let d = (0..3).map(|j| (u[j] - p[j]).abs()).fold(0.0, f64::max);
+                largest = largest.max(d);
+            }
+            prev = Some(u);
+        }
+        assert!(changes >= 2, "the line crosses {changes} field boundaries");
+        // 0.2 rad of line: a slope of 500 N·m/rad would allow 5e-3 N·m per step.
+        assert!(
+            largest <= 5e-3,
+            "largest step {largest} N·m over {changes} crossings"
+        );
+    }
 }
