@@ -106,15 +106,17 @@ impl Config {
         crate::util::read_toml(p)
     }
 
-    /// As [`Config::load`], with the names of the top-level keys and sections the file sets
-    /// (none without a file), so a command can refuse a section it has no use for.
-    pub fn load_with_sections(path: Option<&Path>) -> Result<(Self, Vec<String>)> {
+    /// As [`Config::load`], with the file's TOML table (empty without a file): the top-level
+    /// keys and sections it sets, and the tables inside them, so a command can refuse a section
+    /// it has no use for.
+    pub fn load_with_sections(path: Option<&Path>) -> Result<(Self, toml::Table)> {
         let Some(p) = path else {
-            return Ok((Self::default(), Vec::new()));
+            return Ok((Self::default(), toml::Table::new()));
         };
-        let cfg: Self = crate::util::read_toml(p)?;
-        let table: toml::Table = crate::util::read_toml(p)?;
-        Ok((cfg, table.keys().cloned().collect()))
+        let text = osrl_files::read_text_limited(p, crate::util::MAX_CONFIG_BYTES)?;
+        let cfg: Self = crate::util::parse_toml(p, &text)?;
+        let table: toml::Table = crate::util::parse_toml(p, &text)?;
+        Ok((cfg, table))
     }
 
     /// Checks every section that can be checked without the robot (the trajectory is checked when

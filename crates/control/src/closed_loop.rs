@@ -179,6 +179,9 @@ where
     Ok(Ended::Completed)
 }
 
+/// Distance (rad or m) from a position limit within which a joint counts as at the limit.
+pub(crate) const AT_LIMIT: f64 = 1e-9;
+
 /// Records the series of a run and counts limits and saturation (the observer of
 /// [`run_closed_loop`]).
 struct Recorder {
@@ -206,7 +209,7 @@ impl<C: ?Sized> StepObserver<C> for Recorder {
         for i in 0..s.n {
             let d = (meas.q[i] - self.q_min[i]).min(self.q_max[i] - meas.q[i]);
             self.margin = self.margin.min(d);
-            at_limit |= d <= 1e-9;
+            at_limit |= d <= AT_LIMIT;
         }
         self.limit_steps += at_limit as usize;
         if at_limit && self.first_limit.is_none() {

@@ -14,6 +14,13 @@ pub(crate) fn confidence(ess: f64, trained_ess: f64) -> f64 {
     (ess / trained_ess - 0.5).clamp(0.0, 1.0)
 }
 
+/// The weight `w̃ = c (w − cutoff)` of a controller of confidence `c` ([`confidence`] of its
+/// `ess`) whose field is active at `w` in the command's blend (eq. 34, `learner/command.rs`):
+/// 0 where the field enters at the cutoff and for an untrained controller.
+pub(crate) fn blend_weight(ess: f64, trained_ess: f64, w: f64, cutoff: f64) -> f64 {
+    confidence(ess, trained_ess) * (w - cutoff)
+}
+
 /// One local controller and its bookkeeping.
 #[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct Local {

@@ -64,7 +64,7 @@ const EVAL_EVERY_MAX: f64 = 0.25;
 /// Loads, checks, adapts, saves, reports.
 pub fn run(a: Args) -> Result<()> {
     let (cfg, sections) = Config::load_with_sections(a.config.as_deref())?;
-    if let Some(s) = sections.iter().find(|s| *s != "train" && *s != "learner") {
+    if let Some(s) = sections.keys().find(|s| *s != "train" && *s != "learner") {
         bail!(
             "{}: [{s}] has no meaning for `osrl adapt` (robot, trajectory and simulator are the \
              saved controller's): remove it",
@@ -73,9 +73,7 @@ pub fn run(a: Args) -> Result<()> {
                 .map_or("config".into(), |p| p.display().to_string())
         );
     }
-    if let Some(p) = a.config.as_deref() {
-        refuse_saved_learner_sections(p)?;
-    }
+    refuse_saved_learner_sections(&sections, a.config.as_deref())?;
     cfg.validate()?;
     let saved = SavedModel::load(&a.model)?;
     crate::util::check_out_file("--out", &a.out)?;
@@ -88,7 +86,7 @@ pub fn run(a: Args) -> Result<()> {
     }
     let setup = Setup::from_saved(&saved)?;
     let mut train = continuation(&cfg.train, minutes);
-    if !sections.iter().any(|s| s == "train") {
+    if !sections.contains_key("train") {
         // Without a [train] section: the whole path from the first episode (the controller was
         // trained to it), braked only at 3 cm (a changed robot starts ~1 cm off).
         train.curriculum.stages.clear();
@@ -198,11 +196,13 @@ fn adapt_json(r: &Adapted, change: &RobotChange, robot: &str) -> Result<serde_js
     Ok(j)
 }
 
-/// Refuses `[learner.*]` tables other than `[learner.adaptation]` in `path`: the rest of the
-/// learner's configuration is the saved controller's, and a setting that would be ignored
-/// silently is an error instead.
-fn refuse_saved_learner_sections(path: &std::path::Path) -> Result<()> {
-    let table: toml::Table = crate::util::read_toml(path)?;
+/// Refuses `[learner.*]` tables other than `[learner.adaptation]` in the config file's `table`
+/// (read from `path`): the rest of the learner's configuration is the saved controller's, and a
+/// setting that would be ignored silently is an error instead.
+fn refuse_saved_learner_sections(
+    table: &toml::Table,
+    path: Option<&std::path::Path>,
+) -> Result<()> {
     let Some(learner) = table.get("learner").and_then(|v| v.as_table()) else {
         return Ok(());
     };
@@ -215,7 +215,7 @@ fn refuse_saved_learner_sections(path: &std::path::Path) -> Result<()> {
         bail!(
             "{}: [learner] {} would be ignored by `osrl adapt`: the learner's settings are the \
              saved controller's (only [learner.adaptation] is read); remove {}",
-            path.display(),
+            path.map_or("config".into(), |p| p.display().to_string()),
             ignored.join(", "),
             if ignored.len() == 1 { "it" } else { "them" }
         );

@@ -49,7 +49,7 @@ const LOW_SUPPORT: f64 = 0.9;
 /// The `[trajectory]` section of `file`; any other section is refused.
 fn trajectory_section(file: &std::path::Path) -> Result<TrajectoryConfig> {
     let (cfg, sections) = Config::load_with_sections(Some(file))?;
-    if let Some(other) = sections.iter().find(|s| *s != "trajectory") {
+    if let Some(other) = sections.keys().find(|s| *s != "trajectory") {
         bail!(
             "{}: [{other}] has no meaning for `osrl eval` (the model brings its robot, learner \
              and training settings): keep only [trajectory]",

@@ -81,7 +81,7 @@ fn config(a: &Args) -> Result<Config> {
     let (mut cfg, sections) = Config::load_with_sections(a.config.as_deref())?;
     let file = a.config.as_deref().map(|p| p.display().to_string());
     for (name, what) in NOT_FOR_TRAIN {
-        if sections.iter().any(|s| s == name) {
+        if sections.contains_key(name) {
             bail!(
                 "{}: [{name}] has no meaning for `osrl train` (it configures {what}): remove it",
                 file.as_deref().unwrap_or("config")

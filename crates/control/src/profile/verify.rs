@@ -6,8 +6,7 @@
 //! published-arms table reports them.) The same run measures each joint's sweep, from which
 //! the profile chooses the learner's cost metric (`super::metric_rule`).
 
-use crate::closed_loop::Series;
-use crate::closed_loop::{run_closed_loop, Metrics};
+use crate::closed_loop::{run_closed_loop, Metrics, Series, AT_LIMIT};
 use crate::config::OscConfig;
 use crate::error::{ControlError, Result};
 use crate::osc::Osc;
@@ -100,15 +99,15 @@ fn joints_at_limits(model: &Model, sim: &SimRobot, series: &Series) -> String {
     let (lo, hi) = sim.joint_limits();
     let n = series.n;
     let at = |q: f64, j: usize| {
-        if q - lo[j] <= 1e-9 {
+        if q - lo[j] <= AT_LIMIT {
             Some(("lower", lo[j]))
-        } else if hi[j] - q <= 1e-9 {
+        } else if hi[j] - q <= AT_LIMIT {
             Some(("upper", hi[j]))
         } else {
             None
         }
     };
-    // Per joint: steps at a limit, the first step and which limit.
+    // Per joint, in the order they first reached one: steps at a limit, which limit.
     let mut seen: Vec<(usize, usize, &str, f64)> = Vec::new();
     for q in series.q.chunks_exact(n) {
         for (j, &qj) in q.iter().enumerate() {

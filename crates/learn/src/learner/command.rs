@@ -6,7 +6,7 @@ use super::exploration::explore;
 use super::nominal::nominal_into;
 use super::{Learner, State};
 use crate::error::{LearnError, Result};
-use crate::local::confidence;
+use crate::local::blend_weight;
 use rand::Rng;
 
 /// What produced a command.
@@ -101,7 +101,7 @@ impl Learner {
             let Some(local) = models.locals.map.get_mut(&a.id) else {
                 continue;
             };
-            let w = confidence(local.ess, trained_ess) * (a.w - cut);
+            let w = blend_weight(local.ess, trained_ess, a.w, cut);
             if !(w > 0.0) {
                 continue;
             }

@@ -164,7 +164,7 @@ impl Models {
         a: &mut [f64],
     ) -> bool {
         self.weighted_gain(features, acts, q, a, |local, w| {
-            crate::local::confidence(local.ess, trained_ess) * (w - cutoff)
+            crate::local::blend_weight(local.ess, trained_ess, w, cutoff)
         })
     }
 
