@@ -24,6 +24,9 @@ pub struct Adapted {
     pub nominal: EvalResult,
     /// The same learner on the changed robot, before any learning.
     pub before: EvalResult,
+    /// The same again with the re-adaptation's settings, before any learning: what the
+    /// task-space disturbance observer does alone (`None` when it is off).
+    pub before_observer: Option<EvalResult>,
     /// The run on the changed robot (its curve from the first evaluation after minute 0).
     pub summary: TrainSummary,
     /// The re-adaptation's largest level during the run.
@@ -92,6 +95,10 @@ pub fn adapt(
         ..adaptation
     })?;
     learner.reset_adaptation();
+    let before_observer = match learner.observer().is_on() {
+        true => Some(ev.evaluate(learner)?),
+        false => None,
+    };
     let mut sim = simulator(setup, changed.clone(), cfg.seed)?;
     let axes = changed.task_axes().to_vec();
     let mut signal = Vec::new();
@@ -116,6 +123,7 @@ pub fn adapt(
     Ok(Adapted {
         nominal,
         before,
+        before_observer,
         summary,
         peak_level: last.peak_level,
         adapting_steps: last.adapting_steps,

@@ -57,6 +57,10 @@ pub struct ChangeRow {
     pub nominal_tracking_rms_mm: Option<f64>,
     /// The learned controller, frozen, on the changed arm.
     pub frozen_tracking_rms_mm: Option<f64>,
+    /// The same with the re-adaptation's task-space disturbance observer and no learning: what
+    /// the observer does alone (`None` with the observer off or diverged).
+    #[serde(default)]
+    pub observer_frozen_tracking_rms_mm: Option<f64>,
     /// Eq. 7 with the true model on the unchanged arm, and with that (stale) model on the
     /// changed arm.
     pub eq7_nominal_tracking_rms_mm: Option<f64>,
@@ -198,6 +202,15 @@ pub fn run(setup: &Setup, learner: &Learner, key: &str, sizes: &Sizes) -> Result
         .evaluator(setup.model())?
         .evaluate(&mut learner.clone())?);
     let frozen_changed = mm(&setup.evaluator(&changed)?.evaluate(&mut learner.clone())?);
+    let mut observing = learner.clone();
+    observing.set_adaptation(AdaptationConfig {
+        enabled: true,
+        ..AdaptationConfig::default()
+    })?;
+    let observer_frozen = match observing.observer().is_on() {
+        true => mm(&setup.evaluator(&changed)?.evaluate(&mut observing)?),
+        false => None,
+    };
     let eq7_nominal = eq7_on(setup, setup.model().clone(), sizes.analytical_seconds)?;
     let eq7_stale = eq7_on(setup, changed.clone(), sizes.analytical_seconds)?;
 
@@ -243,6 +256,7 @@ pub fn run(setup: &Setup, learner: &Learner, key: &str, sizes: &Sizes) -> Result
         revert_at_minutes: revert_at,
         nominal_tracking_rms_mm: frozen_nominal,
         frozen_tracking_rms_mm: frozen_changed,
+        observer_frozen_tracking_rms_mm: observer_frozen,
         eq7_nominal_tracking_rms_mm: eq7_nominal,
         eq7_stale_tracking_rms_mm: eq7_stale,
         minutes_to_1mm: first(&points, at, until, &|v| v <= 1.0),

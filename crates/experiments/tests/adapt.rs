@@ -135,3 +135,25 @@ fn the_load_correction_learns_a_payload() {
     assert!(end < before, "{before} → {end} mm");
     assert_eq!(a.summary.aborted_episodes, 0);
 }
+
+/// The task-space disturbance observer of the re-adaptation (`src/dob.rs` of `osrl-learn`),
+/// alone: the loaded controller with it and no learning tracks the loaded arm better than
+/// without it (this barely trained controller: 18.2 → 13.9 mm; a 10-minute one: 10.1 → below
+/// 1 mm, `docs/decisions.md` D34); with `observer_seconds = 0` there is no such evaluation.
+#[test]
+fn the_observer_alone_reduces_a_payloads_tracking_error() {
+    let (setup, mut learner) = trained();
+    let off = AdaptationConfig {
+        observer_seconds: 0.0,
+        ..AdaptationConfig::default()
+    };
+    let a = run_with(&setup, &mut learner.clone(), "payload=0.5", 0.05, off);
+    assert!(a.before_observer.is_none());
+    let a = run(&setup, &mut learner, "payload=0.5", 0.05);
+    let before = a.before.tracking_rms_mm;
+    let with = a.before_observer.expect("observer on").tracking_rms_mm;
+    assert!(
+        with < 0.85 * before,
+        "{before} mm without, {with} mm with the observer"
+    );
+}

@@ -64,6 +64,7 @@ pub struct LearnedController {
     axes: Vec<usize>,
     xdd_ref: Vec<f64>,
     counts: SourceCounts,
+    dob: crate::Dob,
 }
 
 impl LearnedController {
@@ -87,6 +88,7 @@ impl LearnedController {
             .validate()
             .map_err(|e| LearnError::InvalidConfig(e.to_string()))?;
         Ok(Self {
+            dob: learner.observer(),
             learner,
             gains,
             axes: axes.to_vec(),
@@ -131,6 +133,8 @@ impl TaskController for LearnedController {
             meas.xd.as_slice(),
             &mut self.xdd_ref,
         );
+        self.dob
+            .correct(meas.xdd.as_slice(), true, &mut self.xdd_ref);
         let src = self.learner.command::<rand_chacha::ChaCha8Rng>(
             meas.q.as_slice(),
             meas.qd.as_slice(),

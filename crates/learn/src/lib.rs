@@ -19,6 +19,7 @@
 
 mod config;
 mod controller;
+mod dob;
 mod error;
 pub mod eval;
 mod forward;
@@ -36,6 +37,7 @@ pub use config::{
     NominalConfig, PartitionConfig,
 };
 pub use controller::{LearnedController, SourceCounts};
+pub use dob::Dob;
 pub use error::{LearnError, Result};
 pub use forward::ForwardModel;
 pub use gravity::{GravityModel, StaticGate};

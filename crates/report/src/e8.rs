@@ -27,6 +27,7 @@ pub(crate) fn table(r: &Results) -> String {
                 format!("{k} ({})", v.change),
                 or_diverged(v.nominal_tracking_rms_mm),
                 or_diverged(v.frozen_tracking_rms_mm),
+                or_diverged(v.observer_frozen_tracking_rms_mm),
                 format!(
                     "{} / {}",
                     or_diverged(v.eq7_nominal_tracking_rms_mm),
@@ -51,6 +52,7 @@ pub(crate) fn table(r: &Results) -> String {
         "change",
         "learned, unchanged arm [mm]",
         "frozen, changed [mm]",
+        "frozen + observer, changed [mm]",
         "eq. 7 true / stale model [mm]",
         "re-adapting: to ≤ 1 mm [min]",
         "to ≤ 2× nominal [min]",

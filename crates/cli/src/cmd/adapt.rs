@@ -5,6 +5,8 @@
 //! "Re-adaptation"). Saves the adapted controller (its file names the unchanged robot: `osrl
 //! eval` on it measures what the adaptation did to the unchanged arm). With `--json` the last
 //! stdout line has every key of `osrl train --json` plus `change`, `tracking_rms_mm_before`,
+//! `tracking_rms_mm_before_observer` (the loaded controller with the re-adaptation's task-space
+//! disturbance observer and no learning; `null` with the observer off),
 //! `tracking_rms_mm_nominal`, `minutes_to_1mm`, `minutes_to_2x_nominal` and the learning curve
 //! from minute 0.
 //!
@@ -176,6 +178,7 @@ fn adapt_json(r: &Adapted, change: &RobotChange, robot: &str) -> Result<serde_js
     let extra = json!({
         "change": change.to_string(),
         "tracking_rms_mm_before": r.before.tracking_rms_mm,
+        "tracking_rms_mm_before_observer": r.before_observer.as_ref().map(|e| e.tracking_rms_mm),
         "tracking_rms_mm_nominal": nominal,
         "minutes_to_1mm": r.minutes_to(|e| e.tracking_rms_mm <= 1.0),
         "minutes_to_2x_nominal": r.minutes_to(|e| e.tracking_rms_mm <= 2.0 * nominal),

@@ -65,8 +65,8 @@ pub struct AdaptationConfig {
     /// false.
     pub freeze_partition: bool,
     /// Least strength at which the load correction keeps learning once a change has been
-    /// detected (in [0, 1]). Default 0: it learns at the re-adaptation's strength, and stops
-    /// when the local dynamics fit again.
+    /// detected (in [0, 1]). Default 1: it keeps converging after the local dynamics fit again
+    /// (0: it learns at the re-adaptation's strength and stops with it; D33, D34).
     pub load_floor: f64,
     /// What the error ratio compares (see [`AdaptationSource`]). Default `dynamics`.
     pub signal: AdaptationSource,
@@ -74,6 +74,19 @@ pub struct AdaptationConfig {
     /// RMS (positive), so a controller fitted to nearly noise-free targets does not make every
     /// error look large. Default 0.05.
     pub command_floor: f64,
+    /// Time constant of the task-space disturbance observer (s, ≥ 0; 0: off; `src/dob.rs`)
+    /// while re-adapting (`enabled`). Default 0.02: ten control periods at 500 Hz, so a change
+    /// shows in the tracking for a fraction of a second rather than until the learning has
+    /// absorbed it (`docs/decisions.md`, D34).
+    pub observer_seconds: f64,
+    /// Bound on the observer's estimate (m/s², Euclidean norm, > 0). Default 5: a bound keeps a
+    /// badly wrong model from winding the observer up; with the load correction learning, a
+    /// 0.5 kg payload needs less (D34).
+    pub observer_max: f64,
+    /// Whether the observer also runs when `enabled` is false (the training runs of E1–E7).
+    /// Default false: the learned controller of the paper's experiments is the learned command
+    /// alone.
+    pub observer_always: bool,
 }
 
 /// Which prediction error the re-adaptation's level is made of (`docs/learner.md`,
@@ -110,9 +123,12 @@ impl Default for AdaptationConfig {
             load_correction: true,
             load_time_constant: 1.0,
             freeze_partition: false,
-            load_floor: 0.0,
+            load_floor: 1.0,
             signal: AdaptationSource::Dynamics,
             command_floor: 0.05,
+            observer_seconds: 0.02,
+            observer_max: 5.0,
+            observer_always: false,
         }
     }
 }
@@ -166,6 +182,14 @@ impl AdaptationConfig {
             (
                 "command_floor",
                 self.command_floor > 0.0 && self.command_floor.is_finite(),
+            ),
+            (
+                "observer_seconds",
+                self.observer_seconds >= 0.0 && self.observer_seconds.is_finite(),
+            ),
+            (
+                "observer_max",
+                self.observer_max > 0.0 && self.observer_max.is_finite(),
             ),
         ];
         match checks.iter().find(|(_, ok)| !ok) {

@@ -111,6 +111,7 @@ impl Evaluator {
         let dt = self.sim.control_period();
         let steps = (self.seconds / dt).round() as usize;
         let mut ctrl = EvalController {
+            dob: learner.observer(),
             learner,
             gains: self.gains,
             axes: axes.clone(),
@@ -143,6 +144,8 @@ struct EvalController<'a> {
     gains: TaskGains,
     axes: Vec<usize>,
     xdd_ref: Vec<f64>,
+    /// The task-space disturbance observer (`adaptation.observer_seconds`; off by default).
+    dob: crate::Dob,
     source: CommandSource,
     seconds: f64,
     /// The learner's error, if a command failed.
@@ -158,6 +161,8 @@ impl TaskController for EvalController<'_> {
     ) -> osrl_control::Result<()> {
         let (x, xd) = (meas.x.as_slice(), meas.xd.as_slice());
         reference_acceleration(&self.gains, target, &self.axes, x, xd, &mut self.xdd_ref);
+        self.dob
+            .correct(meas.xdd.as_slice(), true, &mut self.xdd_ref);
         let clock = std::time::Instant::now();
         let (q, qd) = (meas.q.as_slice(), meas.qd.as_slice());
         self.source = self

@@ -153,6 +153,16 @@ impl Learner {
         &self.cfg
     }
 
+    /// A task-space disturbance observer with this learner's settings for the drivers that
+    /// compute `ẍ_ref`: `adaptation.observer_seconds` while re-adapting (or with
+    /// `observer_always`), off otherwise.
+    pub fn observer(&self) -> crate::Dob {
+        let a = &self.cfg.adaptation;
+        let on = a.enabled || a.observer_always;
+        let seconds = if on { a.observer_seconds } else { 0.0 };
+        crate::Dob::new(self.m, self.dt, seconds, a.observer_max)
+    }
+
     /// Sets the torque limits of the commands (N·m, one per joint; empty: none), e.g. on a
     /// controller saved without them.
     ///

@@ -61,6 +61,7 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
         );
         // The fade from the PD hold takes the switch; the learner's own limiter starts afresh.
         self.learner.start_episode(None);
+        self.dob.reset();
         let first = self.progress.episodes == 1;
         self.begin_fade(if first {
             cfg.first_switch_seconds
@@ -137,6 +138,9 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
         let prev = &self.prev;
         let (x, xd) = (prev.x.as_slice(), prev.xd.as_slice());
         reference_acceleration(&self.cfg.gains, &target, self.axes, x, xd, xdd_ref);
+        // The observer learns from the learned commands alone, not from the fade's blend.
+        let learn = !self.fading();
+        self.dob.correct(prev.xdd.as_slice(), learn, xdd_ref);
         let rng = self.cfg.explore.then_some(&mut self.rng);
         let gain = path.exploration_gain(t, self.cfg.quiet_holds, self.cfg.quiet_hold_gain);
         self.learner.set_exploration_gain(gain);

@@ -65,6 +65,10 @@ pub struct TrainSummary {
     /// within `home_hold_seconds` (`home_tolerance`).
     #[serde(default)]
     pub unsettled_starts: u64,
+    /// On-policy periods in which the task-space disturbance observer's estimate was held to
+    /// `adaptation.observer_max` (0 with the observer off).
+    #[serde(default)]
+    pub observer_saturated: u64,
     /// Episode paths drawn from a path source (0 when every episode ran the task path).
     #[serde(default)]
     pub paths_drawn: u64,
@@ -159,6 +163,8 @@ pub struct Trainer<'a, R: Robot + ?Sized> {
     fade_from: Vec<f64>,
     fade_left: u64,
     fade_len: u64,
+    /// The task-space disturbance observer of the episodes (`adaptation.observer_seconds`).
+    pub(super) dob: crate::Dob,
     /// Paths drawn from the source.
     paths_drawn: u64,
     /// The recorded path postures of `posture_holds`, and whether the transitions teach the
@@ -198,6 +204,7 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
         }
         let g = &learner.config().guards;
         let rates = scaled::torque_rate_limits(g.torque_rate_limit, &g.torque_limits, n);
+        let dob = learner.observer();
         let rate = RateLimiter::new(&rates, dt);
         let brake_steps = scaled::brake_steps(cfg.curriculum.brake_step, &g.torque_limits, n);
         let prev = robot.measurement().clone();
@@ -248,6 +255,7 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
             curriculum: Curriculum::new(&cfg.curriculum),
             fade_from: vec![0.0; n],
             fade_left: 0,
+            dob,
             fade_len: 1,
             paths_drawn: 0,
             postures: Default::default(),
@@ -301,6 +309,11 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
         self.fade_from.copy_from_slice(&self.u);
         self.fade_left = (seconds / self.dt).round() as u64;
         self.fade_len = self.fade_left.max(1);
+    }
+
+    /// Whether a fade is on (the next command sent is not the learned one alone).
+    pub(super) fn fading(&self) -> bool {
+        self.fade_left > 0
     }
 
     /// Blends `self.u` with the command the fade started from, `smoothstep` over its length.
@@ -431,6 +444,7 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
             stats: self.learner.stats(),
             n_local_models: self.learner.n_local_models(),
             unsettled_starts: self.unsettled_starts,
+            observer_saturated: self.dob.saturated(),
             paths_drawn: self.paths_drawn,
             episode_log: std::mem::take(&mut self.episode_log),
         }
