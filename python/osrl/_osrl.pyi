@@ -185,9 +185,18 @@ class LearnedController:
                 xdd_d: ArrayLike1) -> Array:
         """The command ``u`` (N·m, shape ``(dof,)``) for ``measurement`` (an
         ``osrl.Measurement``, or any object with ``q``, ``qd`` of shape ``(dof,)`` and ``x``,
-        ``xd`` of shape ``(task_dim,)``) and the target position, velocity and acceleration on
-        the task axes (each ``(task_dim,)``). Bad inputs raise ``ValueError`` and change
+        ``xd`` of shape ``(task_dim,)``, and ``xdd``, the measured task acceleration under the
+        last command, when ``observer`` is on) and the target position, velocity and acceleration
+        on the task axes (each ``(task_dim,)``). Bad inputs raise ``ValueError`` and change
         nothing. Allocation-free in Rust (only the returned array is new)."""
+        ...
+    def reset(self) -> None:
+        """Forgets the disturbance observer's estimate (before a new run from rest)."""
+        ...
+    @property
+    def observer(self) -> bool:
+        """Whether the task-space disturbance observer runs (a controller saved by ``osrl
+        adapt``: its re-adaptation is on); ``command`` then reads ``measurement.xdd``."""
         ...
     @property
     def dof(self) -> int: ...

@@ -21,28 +21,42 @@ def model_file(cargo, tmp_path_factory):
     return out
 
 
+@pytest.fixture(scope="session")
+def adapted_file(cargo, model_file, tmp_path_factory):
+    """That controller after 0.1 simulated minutes of `osrl adapt` with a 0.5 kg payload: its
+    re-adaptation, and with it the task-space disturbance observer, is on."""
+    out = tmp_path_factory.mktemp("adapted") / "planar3.model"
+    cargo("--", "adapt", "--model", str(model_file), "--change", "payload=0.5", "--minutes",
+          "0.1", "--seed", "0", "--out", str(out))
+    return out
+
+
 def _floats(words):
     return np.array([struct.unpack("<d", bytes.fromhex(w)[::-1])[0] for w in words])
 
 
-def _meas(q, qd, x, xd, n, m):
-    return Measurement(0.0, q, qd, x, xd, np.zeros(m), np.zeros(n))
+def _meas(q, qd, x, xd, n, m, xdd=None):
+    return Measurement(0.0, q, qd, x, xd, np.zeros(m) if xdd is None else xdd, np.zeros(n))
 
 
-def test_commands_equal_the_rust_controller_bit_for_bit(cargo, model_file):
+@pytest.mark.parametrize("which", ["trained", "adapted"])
+def test_commands_equal_the_rust_controller_bit_for_bit(cargo, model_file, adapted_file, which):
+    path = model_file if which == "trained" else adapted_file
     steps = 400
-    text = cargo("-p", "osrl-py", "--example", "learned_reference", "--", str(model_file),
-                 str(steps))
-    c = osrl.LearnedController.load(model_file)
+    text = cargo("-p", "osrl-py", "--example", "learned_reference", "--", str(path), str(steps))
+    c = osrl.LearnedController.load(path)
+    # The adapted controller's disturbance observer reads the measured task acceleration.
+    assert c.observer == (which == "adapted")
     n, m = c.dof, c.task_dim
     lines = text.split("\n")[:steps]
     assert len(lines) == steps
     for k, line in enumerate(lines):
         v = _floats(line.split())
         q, qd, x, xd = v[:n], v[n:2 * n], v[2 * n:2 * n + m], v[2 * n + m:2 * n + 2 * m]
-        t = v[2 * n + 2 * m:2 * n + 5 * m]
-        u_rust = v[2 * n + 5 * m:]
-        u = c.command(_meas(q, qd, x, xd, n, m), t[:m], t[m:2 * m], t[2 * m:])
+        xdd = v[2 * n + 2 * m:2 * n + 3 * m]
+        t = v[2 * n + 3 * m:2 * n + 6 * m]
+        u_rust = v[2 * n + 6 * m:]
+        u = c.command(_meas(q, qd, x, xd, n, m, xdd), t[:m], t[m:2 * m], t[2 * m:])
         assert u.tobytes() == u_rust.tobytes(), f"step {k}: {u} != {u_rust}"
     assert sum(c.counts) == steps
 

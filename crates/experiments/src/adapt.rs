@@ -27,6 +27,9 @@ pub struct Adapted {
     /// The same again with the re-adaptation's settings, before any learning: what the
     /// task-space disturbance observer does alone (`None` when it is off).
     pub before_observer: Option<EvalResult>,
+    /// The learner with the re-adaptation's settings (the observer) on the unchanged robot,
+    /// before any learning (`None` with the observer off).
+    pub nominal_observer: Option<EvalResult>,
     /// The run on the changed robot (its curve from the first evaluation after minute 0).
     pub summary: TrainSummary,
     /// The re-adaptation's largest level during the run.
@@ -95,9 +98,12 @@ pub fn adapt(
         ..adaptation
     })?;
     learner.reset_adaptation();
-    let before_observer = match learner.observer().is_on() {
-        true => Some(ev.evaluate(learner)?),
-        false => None,
+    let (before_observer, nominal_observer) = match learner.observer().is_on() {
+        true => (
+            Some(ev.evaluate(learner)?),
+            Some(setup.evaluator(setup.model())?.evaluate(learner)?),
+        ),
+        false => (None, None),
     };
     let mut sim = simulator(setup, changed.clone(), cfg.seed)?;
     let axes = changed.task_axes().to_vec();
@@ -124,6 +130,7 @@ pub fn adapt(
         nominal,
         before,
         before_observer,
+        nominal_observer,
         summary,
         peak_level: last.peak_level,
         adapting_steps: last.adapting_steps,

@@ -58,7 +58,8 @@ pub struct ChangeRow {
     /// The learned controller, frozen, on the changed arm.
     pub frozen_tracking_rms_mm: Option<f64>,
     /// The same with the re-adaptation's task-space disturbance observer and no learning: what
-    /// the observer does alone (`None` with the observer off or diverged).
+    /// the observer does alone (`None` with the observer off, or diverged: then listed in
+    /// `diverged`).
     #[serde(default)]
     pub observer_frozen_tracking_rms_mm: Option<f64>,
     /// Eq. 7 with the true model on the unchanged arm, and with that (stale) model on the
@@ -89,6 +90,16 @@ pub struct ChangeRow {
 }
 
 impl ChangeRow {
+    /// Lists `observer_frozen_tracking_rms_mm` in [`ChangeRow::diverged`] when the observer ran
+    /// and its evaluation has no number (without the observer it is `null` too).
+    fn note_observer_diverged(mut self, observer_on: bool) -> Self {
+        if observer_on && self.observer_frozen_tracking_rms_mm.is_none() {
+            self.diverged
+                .push("observer_frozen_tracking_rms_mm".to_string());
+        }
+        self
+    }
+
     /// Lists in [`ChangeRow::diverged`] every tracking or nMSE field that is `null`.
     fn note_diverged(mut self) -> Self {
         let mut d = Vec::new();
@@ -207,7 +218,8 @@ pub fn run(setup: &Setup, learner: &Learner, key: &str, sizes: &Sizes) -> Result
         enabled: true,
         ..AdaptationConfig::default()
     })?;
-    let observer_frozen = match observing.observer().is_on() {
+    let observer_on = observing.observer().is_on();
+    let observer_frozen = match observer_on {
         true => mm(&setup.evaluator(&changed)?.evaluate(&mut observing)?),
         false => None,
     };
@@ -278,7 +290,8 @@ pub fn run(setup: &Setup, learner: &Learner, key: &str, sizes: &Sizes) -> Result
         diverged: Vec::new(),
         timeline: tl,
     }
-    .note_diverged())
+    .note_diverged()
+    .note_observer_diverged(observer_on))
 }
 
 /// E8 per robot and change.

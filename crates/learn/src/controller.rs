@@ -116,6 +116,17 @@ impl LearnedController {
     pub fn counts(&self) -> SourceCounts {
         self.counts
     }
+
+    /// The task-space disturbance observer (on for a learner whose re-adaptation is enabled,
+    /// e.g. one saved by `osrl adapt`; it then reads the measured `ẍ`).
+    pub fn observer(&self) -> &crate::Dob {
+        &self.dob
+    }
+
+    /// Forgets the observer's estimate, e.g. before a new run from rest.
+    pub fn reset_observer(&mut self) {
+        self.dob.reset();
+    }
 }
 
 impl TaskController for LearnedController {

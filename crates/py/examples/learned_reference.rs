@@ -2,7 +2,7 @@
 //! (`python/tests/test_learned.py`): runs a model saved by `osrl train` as the
 //! `osrl_learn::LearnedController` of `osrl simulate --controller learned:MODEL` in a closed loop
 //! on osrl's simulator (from rest at the model's home, along its training trajectory) and prints
-//! one line per control step: the measured `q, q̇, x, ẋ`, the target `x_d, ẋ_d, ẍ_d` on the task
+//! one line per control step: the measured `q, q̇, x, ẋ, ẍ`, the target `x_d, ẋ_d, ẍ_d` on the task
 //! axes and the command `u`, each value as its `f64` bit pattern (16 hex digits).
 //!
 //! `cargo run --release -p osrl-py --example learned_reference -- MODEL STEPS`
@@ -45,7 +45,7 @@ fn main() {
         let meas = sim.measurement().clone();
         let target = traj.sample(k as f64 * info.control_period);
         ctrl.command(&meas, &target, &mut u).expect("a command");
-        for v in [&meas.q, &meas.qd, &meas.x, &meas.xd] {
+        for v in [&meas.q, &meas.qd, &meas.x, &meas.xd, &meas.xdd] {
             hex(&mut out, v.iter().copied());
         }
         for v in [&target.x, &target.xd, &target.xdd] {

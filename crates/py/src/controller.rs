@@ -3,7 +3,7 @@
 
 use crate::arrays::out1;
 use crate::errors::{learn_err, setup_err};
-use crate::meas::{read_checked, read_state, zeros};
+use crate::meas::{read_checked, read_state, read_xdd, zeros};
 use numpy::PyArray1;
 use osrl_control::{Target, TaskController};
 use osrl_dynamics::Measurement;
@@ -78,6 +78,9 @@ impl PyLearnedController {
         xdd_d: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
         read_state(measurement, "measurement", &mut self.meas, &mut self.buf)?;
+        if self.ctrl.observer().is_on() {
+            read_xdd(measurement, "measurement", &mut self.meas, &mut self.buf)?;
+        }
         let m = self.axes.len();
         for (what, obj, dst) in [("x_d", x_d, 0), ("xd_d", xd_d, 1), ("xdd_d", xdd_d, 2)] {
             read_checked(what, obj, m, &mut self.buf)?;
@@ -94,6 +97,17 @@ impl PyLearnedController {
             .command(&self.meas, &self.target, &mut self.u)
             .map_err(|e| PyValueError::new_err(e.to_string()))?;
         Ok(out1(py, &self.u))
+    }
+
+    /// Forgets the disturbance observer's estimate (before a new run from rest).
+    fn reset(&mut self) {
+        self.ctrl.reset_observer();
+    }
+
+    /// Whether the task-space disturbance observer runs (then `command` reads `xdd`).
+    #[getter]
+    fn observer(&self) -> bool {
+        self.ctrl.observer().is_on()
     }
 
     /// Number of joints.

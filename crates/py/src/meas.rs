@@ -78,6 +78,17 @@ pub fn read_state(
     field(obj, what, intern!(py, "xd"), &mut dst.xd, buf)
 }
 
+/// The measured task acceleration `xdd` of `obj` into `dst.xdd` (the disturbance observer's
+/// input).
+pub fn read_xdd(
+    obj: &Bound<'_, PyAny>,
+    what: &str,
+    dst: &mut Measurement,
+    buf: &mut Vec<f64>,
+) -> PyResult<()> {
+    field(obj, what, intern!(obj.py(), "xdd"), &mut dst.xdd, buf)
+}
+
 /// Every field of `obj` into `dst` (sizes from `dst`); see [`read_state`].
 pub fn read_all(
     obj: &Bound<'_, PyAny>,

@@ -27,7 +27,16 @@ pub(crate) fn table(r: &Results) -> String {
                 format!("{k} ({})", v.change),
                 or_diverged(v.nominal_tracking_rms_mm),
                 or_diverged(v.frozen_tracking_rms_mm),
-                or_diverged(v.observer_frozen_tracking_rms_mm),
+                match v.observer_frozen_tracking_rms_mm {
+                    None if !v
+                        .diverged
+                        .iter()
+                        .any(|d| d == "observer_frozen_tracking_rms_mm") =>
+                    {
+                        "—".into()
+                    }
+                    x => or_diverged(x),
+                },
                 format!(
                     "{} / {}",
                     or_diverged(v.eq7_nominal_tracking_rms_mm),

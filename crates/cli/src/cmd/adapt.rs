@@ -3,11 +3,14 @@
 //! simulated robot itself). No babbling: on-policy learning along the controller's training path
 //! from the first step, with the learner's re-adaptation switched on (`docs/learner.md`,
 //! "Re-adaptation"). Saves the adapted controller (its file names the unchanged robot: `osrl
-//! eval` on it measures what the adaptation did to the unchanged arm). With `--json` the last
+//! eval` on it measures what the adaptation did to the unchanged arm; its re-adaptation stays
+//! on in the file, so that evaluation, `osrl simulate` and the Python `LearnedController` run it
+//! with the disturbance observer). With `--json` the last
 //! stdout line has every key of `osrl train --json` plus `change`, `tracking_rms_mm_before`,
 //! `tracking_rms_mm_before_observer` (the loaded controller with the re-adaptation's task-space
 //! disturbance observer and no learning; `null` with the observer off),
-//! `tracking_rms_mm_nominal`, `minutes_to_1mm`, `minutes_to_2x_nominal` and the learning curve
+//! `tracking_rms_mm_nominal`, `tracking_rms_mm_nominal_observer` (with the observer, on the
+//! unchanged robot), `minutes_to_2x_nominal_observer` (to within twice that), `minutes_to_1mm`, `minutes_to_2x_nominal` and the learning curve
 //! from minute 0.
 //!
 //! The config file's `[train]` section sets the run (its gains are replaced by the saved
@@ -175,13 +178,17 @@ fn adapt_json(r: &Adapted, change: &RobotChange, robot: &str) -> Result<serde_js
     let mut curve = vec![(0.0, r.before.clone())];
     curve.extend(s.learning_curve.iter().cloned());
     let nominal = r.nominal.tracking_rms_mm;
+    let nominal_observer = r.nominal_observer.as_ref().map(|e| e.tracking_rms_mm);
     let extra = json!({
         "change": change.to_string(),
         "tracking_rms_mm_before": r.before.tracking_rms_mm,
         "tracking_rms_mm_before_observer": r.before_observer.as_ref().map(|e| e.tracking_rms_mm),
+        "tracking_rms_mm_nominal_observer": nominal_observer,
         "tracking_rms_mm_nominal": nominal,
         "minutes_to_1mm": r.minutes_to(|e| e.tracking_rms_mm <= 1.0),
         "minutes_to_2x_nominal": r.minutes_to(|e| e.tracking_rms_mm <= 2.0 * nominal),
+        "minutes_to_2x_nominal_observer": nominal_observer
+            .and_then(|n| r.minutes_to(|e| e.tracking_rms_mm <= 2.0 * n)),
         "minutes_to_nmse_0.05": r.minutes_to(|e| e.command_nmse <= 0.05),
         "adaptation_peak_level": r.peak_level,
         "adapting_steps": r.adapting_steps,

@@ -80,8 +80,8 @@ pub struct AdaptationConfig {
     /// absorbed it (`docs/decisions.md`, D34).
     pub observer_seconds: f64,
     /// Bound on the observer's estimate (m/s², Euclidean norm, > 0). Default 5: a bound keeps a
-    /// badly wrong model from winding the observer up; with the load correction learning, a
-    /// 0.5 kg payload needs less (D34).
+    /// badly wrong model from winding the observer up; the periods spent at it are counted
+    /// (`observer_saturated`; the choice between 5 and 10: D34).
     pub observer_max: f64,
     /// Whether the observer also runs when `enabled` is false (the training runs of E1–E7).
     /// Default false: the learned controller of the paper's experiments is the learned command
@@ -222,6 +222,33 @@ mod tests {
             };
             let e = c.validate().unwrap_err().to_string();
             assert!(e.contains("load_floor"), "{e}");
+        }
+    }
+
+    /// The observer's time constant may be 0 (off) but not negative or non-finite, its bound
+    /// must be positive and finite; each is refused by name.
+    #[test]
+    fn the_observer_settings_are_checked() {
+        let off = AdaptationConfig {
+            observer_seconds: 0.0,
+            ..AdaptationConfig::default()
+        };
+        assert!(off.validate().is_ok());
+        for bad in [-0.01, f64::NAN, f64::INFINITY] {
+            let c = AdaptationConfig {
+                observer_seconds: bad,
+                ..AdaptationConfig::default()
+            };
+            let e = c.validate().unwrap_err().to_string();
+            assert!(e.contains("observer_seconds"), "{e}");
+        }
+        for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            let c = AdaptationConfig {
+                observer_max: bad,
+                ..AdaptationConfig::default()
+            };
+            let e = c.validate().unwrap_err().to_string();
+            assert!(e.contains("observer_max"), "{e}");
         }
     }
 

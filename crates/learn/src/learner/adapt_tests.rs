@@ -62,3 +62,32 @@ fn the_difference_form_floors_the_residual_at_its_own_floor() {
     assert!(huge < 0.5 * default, "{huge} vs {default}");
     assert_eq!(level_floor, default);
 }
+
+/// The task-space disturbance observer runs while re-adapting or with `observer_always`, and
+/// not otherwise (the training runs of E1–E7) nor with `observer_seconds = 0`.
+#[test]
+fn the_observer_runs_while_re_adapting_or_when_asked() {
+    let on = |adaptation: AdaptationConfig| {
+        let mut cfg = fixture::config();
+        cfg.adaptation = adaptation;
+        crate::Learner::new(3, 2, 0.002, cfg)
+            .unwrap()
+            .observer()
+            .is_on()
+    };
+    let d = AdaptationConfig::default;
+    assert!(!on(d()));
+    assert!(on(AdaptationConfig {
+        enabled: true,
+        ..d()
+    }));
+    assert!(on(AdaptationConfig {
+        observer_always: true,
+        ..d()
+    }));
+    assert!(!on(AdaptationConfig {
+        enabled: true,
+        observer_seconds: 0.0,
+        ..d()
+    }));
+}

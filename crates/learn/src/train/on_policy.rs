@@ -138,15 +138,20 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
         let prev = &self.prev;
         let (x, xd) = (prev.x.as_slice(), prev.xd.as_slice());
         reference_acceleration(&self.cfg.gains, &target, self.axes, x, xd, xdd_ref);
-        // The observer learns from the learned commands alone, not from the fade's blend.
-        let learn = !self.fading();
-        self.dob.correct(prev.xdd.as_slice(), learn, xdd_ref);
+        // The observer learns from the response to the learned command alone (not to a fade's
+        // blend or a command the limits changed).
+        self.dob
+            .correct(prev.xdd.as_slice(), !self.sent_modified, xdd_ref);
         let rng = self.cfg.explore.then_some(&mut self.rng);
         let gain = path.exploration_gain(t, self.cfg.quiet_holds, self.cfg.quiet_hold_gain);
         self.learner.set_exploration_gain(gain);
         let (q, qd) = (prev.q.as_slice(), prev.qd.as_slice());
+        let before = self.learner.stats();
         self.learner.command(q, qd, xdd_ref, rng, &mut self.u)?;
+        let after = self.learner.stats();
+        let limited = after.clipped != before.clipped || after.rate_limited != before.rate_limited;
         self.step()?;
+        self.sent_modified |= limited;
         let after = path.sample(&self.episode_path, t + self.dt);
         Ok(task_error(&after, self.axes, self.prev.x.as_slice()))
     }

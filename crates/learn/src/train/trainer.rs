@@ -165,6 +165,9 @@ pub struct Trainer<'a, R: Robot + ?Sized> {
     fade_len: u64,
     /// The task-space disturbance observer of the episodes (`adaptation.observer_seconds`).
     pub(super) dob: crate::Dob,
+    /// Whether the last command sent differed from the learner's: faded, clipped, refused by
+    /// the jump guard, step or rate limited (the observer does not learn from its response).
+    pub(super) sent_modified: bool,
     /// Paths drawn from the source.
     paths_drawn: u64,
     /// The recorded path postures of `posture_holds`, and whether the transitions teach the
@@ -256,6 +259,7 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
             fade_from: vec![0.0; n],
             fade_left: 0,
             dob,
+            sent_modified: false,
             fade_len: 1,
             paths_drawn: 0,
             postures: Default::default(),
@@ -311,11 +315,6 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
         self.fade_len = self.fade_left.max(1);
     }
 
-    /// Whether a fade is on (the next command sent is not the learned one alone).
-    pub(super) fn fading(&self) -> bool {
-        self.fade_left > 0
-    }
-
     /// Blends `self.u` with the command the fade started from, `smoothstep` over its length.
     fn fade(&mut self) {
         if self.fade_left == 0 {
@@ -332,6 +331,7 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
     /// Applies `self.u` (faded, if a fade is on) for one period, learns from the transition,
     /// evaluates when due; in the on-policy phase also measures the command step.
     pub(super) fn step(&mut self) -> Result<()> {
+        let faded = self.fade_left > 0;
         self.fade();
         let limits = &self.learner.config().guards.torque_limits;
         let mut clipped = false;
@@ -342,6 +342,7 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
         if clipped && self.progress.phase == Phase::OnPolicy {
             self.driver_clipped += 1;
         }
+        let (mut refused, mut step_limited) = (false, false);
         if let Some(j) = self
             .jump_guard
             .then(|| self.steps_seen.jump(&self.u, &self.brake_steps))
@@ -349,6 +350,7 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
         {
             // Refused: the previous command again, and the episode brakes.
             self.steps_seen.repeat_last(&mut self.u);
+            refused = true;
             self.jumped = true;
             self.jump_joint.get_or_insert(j);
             self.jumps_by_joint[j] += 1;
@@ -358,11 +360,14 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
                 && self.steps_seen.limit_step(&mut self.u, limit)
             {
                 self.step_limited += 1;
+                step_limited = true;
             }
         }
-        if self.rate.apply(&mut self.u) {
+        let rate_limited = self.rate.apply(&mut self.u);
+        if rate_limited {
             self.rate_limited += 1;
         }
+        self.sent_modified = faded || clipped || refused || step_limited || rate_limited;
         if self.progress.phase == Phase::OnPolicy {
             self.steps_seen.sent(&self.u);
         }
