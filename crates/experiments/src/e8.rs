@@ -90,18 +90,10 @@ pub struct ChangeRow {
 }
 
 impl ChangeRow {
-    /// Lists `observer_frozen_tracking_rms_mm` in [`ChangeRow::diverged`] when the observer ran
-    /// and its evaluation has no number (without the observer it is `null` too).
-    fn note_observer_diverged(mut self, observer_on: bool) -> Self {
-        if observer_on && self.observer_frozen_tracking_rms_mm.is_none() {
-            self.diverged
-                .push("observer_frozen_tracking_rms_mm".to_string());
-        }
-        self
-    }
-
-    /// Lists in [`ChangeRow::diverged`] every tracking or nMSE field that is `null`.
-    fn note_diverged(mut self) -> Self {
+    /// Lists in [`ChangeRow::diverged`] every tracking or nMSE field that is `null`
+    /// (`observer_frozen_tracking_rms_mm` only when the observer ran: without it, it is `null`
+    /// too).
+    fn note_diverged(mut self, observer_on: bool) -> Self {
         let mut d = Vec::new();
         let mut note = |name: &str, v: Option<f64>| {
             if v.is_none() {
@@ -110,6 +102,12 @@ impl ChangeRow {
         };
         note("nominal_tracking_rms_mm", self.nominal_tracking_rms_mm);
         note("frozen_tracking_rms_mm", self.frozen_tracking_rms_mm);
+        if observer_on {
+            note(
+                "observer_frozen_tracking_rms_mm",
+                self.observer_frozen_tracking_rms_mm,
+            );
+        }
         note(
             "eq7_nominal_tracking_rms_mm",
             self.eq7_nominal_tracking_rms_mm,
@@ -213,26 +211,22 @@ pub fn run(setup: &Setup, learner: &Learner, key: &str, sizes: &Sizes) -> Result
         .evaluator(setup.model())?
         .evaluate(&mut learner.clone())?);
     let frozen_changed = mm(&setup.evaluator(&changed)?.evaluate(&mut learner.clone())?);
-    let mut observing = learner.clone();
-    observing.set_adaptation(AdaptationConfig {
-        enabled: true,
-        ..AdaptationConfig::default()
-    })?;
-    let observer_on = observing.observer().is_on();
-    let observer_frozen = match observer_on {
-        true => mm(&setup.evaluator(&changed)?.evaluate(&mut observing)?),
-        false => None,
-    };
     let eq7_nominal = eq7_on(setup, setup.model().clone(), sizes.analytical_seconds)?;
     let eq7_stale = eq7_on(setup, changed.clone(), sizes.analytical_seconds)?;
 
-    // Re-adapting, on the robot that changes (and back).
+    // Re-adapting, on the robot that changes (and back); before it learns, its evaluation on
+    // the changed robot is the disturbance observer alone (the evaluation runs a copy).
     let mut adapting = learner.clone();
     adapting.set_adaptation(AdaptationConfig {
         enabled: true,
         ..AdaptationConfig::default()
     })?;
     adapting.reset_adaptation();
+    let observer_on = adapting.observer().is_on();
+    let observer_frozen = match observer_on {
+        true => mm(&setup.evaluator(&changed)?.evaluate(&mut adapting)?),
+        false => None,
+    };
     let summary = run_changing(setup, &changed, &schedule, &mut adapting, &cfg, &mut |_| {})?;
     let peak = adapting.adaptation().peak_level;
 
@@ -290,8 +284,7 @@ pub fn run(setup: &Setup, learner: &Learner, key: &str, sizes: &Sizes) -> Result
         diverged: Vec::new(),
         timeline: tl,
     }
-    .note_diverged()
-    .note_observer_diverged(observer_on))
+    .note_diverged(observer_on))
 }
 
 /// E8 per robot and change.

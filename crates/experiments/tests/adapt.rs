@@ -110,6 +110,7 @@ fn detected_and_settled(r: Adapted) {
 /// On the unchanged robot the tracking and the command error stay where they were (the level
 /// may cross `on_ratio` for a moment as the first episode starts from rest; what it then forgets
 /// the same data teach again).
+///
 /// The adapted learner is evaluated without the disturbance observer, as `before` is, so the
 /// comparison is of what the learning did.
 #[test]

@@ -32,9 +32,10 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+use crate::dob::observed_reference;
 use crate::error::{LearnError, Result};
 use crate::learner::{CommandSource, Learner};
-use osrl_control::{reference_acceleration, ControlError, Target, TaskController, TaskGains};
+use osrl_control::{ControlError, Target, TaskController, TaskGains};
 use osrl_dynamics::Measurement;
 
 /// How many commands came from each source ([`CommandSource`]).
@@ -136,16 +137,16 @@ impl TaskController for LearnedController {
         target: &Target,
         u: &mut [f64],
     ) -> osrl_control::Result<()> {
-        reference_acceleration(
-            &self.gains,
+        let (gains, axes) = (&self.gains, &self.axes);
+        observed_reference(
+            gains,
             target,
-            &self.axes,
-            meas.x.as_slice(),
-            meas.xd.as_slice(),
+            axes,
+            meas,
+            &mut self.dob,
+            true,
             &mut self.xdd_ref,
         );
-        self.dob
-            .correct(meas.xdd.as_slice(), true, &mut self.xdd_ref);
         let src = self.learner.command::<rand_chacha::ChaCha8Rng>(
             meas.q.as_slice(),
             meas.qd.as_slice(),

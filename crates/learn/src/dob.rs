@@ -11,6 +11,26 @@
 //! (`observer_max`, counted when it acts) so that a model that is badly wrong cannot wind it
 //! up. Measurements only: `ẍ` is the hand's measured acceleration under the last command.
 
+use osrl_control::{reference_acceleration, Target, TaskGains};
+use osrl_dynamics::Measurement;
+
+/// The reference every driver of the learned command sends: eq. 2's `ẍ_ref` for `target` at the
+/// measured `x, ẋ` of `meas` with `gains` on the task `axes`, less the observer's estimate
+/// (learned from the measured `ẍ` of `meas` when `learn`) — into `out`.
+pub(crate) fn observed_reference(
+    gains: &TaskGains,
+    target: &Target,
+    axes: &[usize],
+    meas: &Measurement,
+    dob: &mut Dob,
+    learn: bool,
+    out: &mut [f64],
+) {
+    let (x, xd) = (meas.x.as_slice(), meas.xd.as_slice());
+    reference_acceleration(gains, target, axes, x, xd, out);
+    dob.correct(meas.xdd.as_slice(), learn, out);
+}
+
 /// The observer's state: the estimate `d̂` and the reference last sent. Allocates only in
 /// [`Dob::new`].
 #[derive(Clone, Debug)]

@@ -5,13 +5,13 @@
 //! "Re-adaptation"). Saves the adapted controller (its file names the unchanged robot: `osrl
 //! eval` on it measures what the adaptation did to the unchanged arm; its re-adaptation stays
 //! on in the file, so that evaluation, `osrl simulate` and the Python `LearnedController` run it
-//! with the disturbance observer). With `--json` the last
-//! stdout line has every key of `osrl train --json` plus `change`, `tracking_rms_mm_before`,
-//! `tracking_rms_mm_before_observer` (the loaded controller with the re-adaptation's task-space
-//! disturbance observer and no learning; `null` with the observer off),
-//! `tracking_rms_mm_nominal`, `tracking_rms_mm_nominal_observer` (with the observer, on the
-//! unchanged robot), `minutes_to_2x_nominal_observer` (to within twice that), `minutes_to_1mm`, `minutes_to_2x_nominal` and the learning curve
-//! from minute 0.
+//! with the disturbance observer). With `--json` the last stdout line has every key of `osrl
+//! train --json` plus `change`, `tracking_rms_mm_before`, `tracking_rms_mm_before_observer`
+//! (the loaded controller with the re-adaptation's task-space disturbance observer and no
+//! learning; `null` with the observer off), `tracking_rms_mm_nominal`,
+//! `tracking_rms_mm_nominal_observer` (with the observer, on the unchanged robot),
+//! `minutes_to_1mm`, `minutes_to_2x_nominal`, `minutes_to_2x_nominal_observer` (to within twice
+//! the nominal with the observer) and the learning curve from minute 0.
 //!
 //! The config file's `[train]` section sets the run (its gains are replaced by the saved
 //! controller's, its babbling is skipped, evaluations come at least every 0.25 minutes) and

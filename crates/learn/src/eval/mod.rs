@@ -9,11 +9,12 @@ mod result;
 mod true_gain;
 mod window;
 
+use crate::dob::observed_reference;
 use crate::error::{LearnError, Result};
 use crate::learner::{CommandSource, Learner};
 use osrl_control::{
-    drive, reference_acceleration, ControlError, Ended, Osc, OscConfig, StepObserver, StepView,
-    Target, TaskController, TaskGains, Trajectory,
+    drive, ControlError, Ended, Osc, OscConfig, StepObserver, StepView, Target, TaskController,
+    TaskGains, Trajectory,
 };
 use osrl_dynamics::{Measurement, Robot, SimConfig, SimRobot};
 use std::ops::ControlFlow;
@@ -159,10 +160,16 @@ impl TaskController for EvalController<'_> {
         target: &Target,
         u: &mut [f64],
     ) -> osrl_control::Result<()> {
-        let (x, xd) = (meas.x.as_slice(), meas.xd.as_slice());
-        reference_acceleration(&self.gains, target, &self.axes, x, xd, &mut self.xdd_ref);
-        self.dob
-            .correct(meas.xdd.as_slice(), true, &mut self.xdd_ref);
+        let (gains, axes) = (&self.gains, &self.axes);
+        observed_reference(
+            gains,
+            target,
+            axes,
+            meas,
+            &mut self.dob,
+            true,
+            &mut self.xdd_ref,
+        );
         let clock = std::time::Instant::now();
         let (q, qd) = (meas.q.as_slice(), meas.qd.as_slice());
         self.source = self

@@ -5,8 +5,9 @@
 use super::curriculum::EpisodePath;
 use super::observer::{EpisodeOutcome, EpisodeRecord, EpisodeReport, Phase};
 use super::Trainer;
+use crate::dob::observed_reference;
 use crate::error::Result;
-use osrl_control::{reference_acceleration, task_error};
+use osrl_control::task_error;
 use osrl_dynamics::Robot;
 
 impl<R: Robot + ?Sized> Trainer<'_, R> {
@@ -136,20 +137,20 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
     fn track(&mut self, path: &EpisodePath, t: f64, xdd_ref: &mut [f64]) -> Result<f64> {
         let target = path.sample(&self.episode_path, t);
         let prev = &self.prev;
-        let (x, xd) = (prev.x.as_slice(), prev.xd.as_slice());
-        reference_acceleration(&self.cfg.gains, &target, self.axes, x, xd, xdd_ref);
         // The observer learns from the response to the learned command alone (not to a fade's
         // blend or a command the limits changed).
-        self.dob
-            .correct(prev.xdd.as_slice(), !self.sent_modified, xdd_ref);
+        let learn = !self.sent_modified;
+        let (gains, axes) = (&self.cfg.gains, self.axes);
+        observed_reference(gains, &target, axes, prev, &mut self.dob, learn, xdd_ref);
         let rng = self.cfg.explore.then_some(&mut self.rng);
         let gain = path.exploration_gain(t, self.cfg.quiet_holds, self.cfg.quiet_hold_gain);
         self.learner.set_exploration_gain(gain);
         let (q, qd) = (prev.q.as_slice(), prev.qd.as_slice());
-        let before = self.learner.stats();
+        let limits_before = self.learner.stats();
         self.learner.command(q, qd, xdd_ref, rng, &mut self.u)?;
-        let after = self.learner.stats();
-        let limited = after.clipped != before.clipped || after.rate_limited != before.rate_limited;
+        let s = self.learner.stats();
+        let limited =
+            s.clipped != limits_before.clipped || s.rate_limited != limits_before.rate_limited;
         self.step()?;
         self.sent_modified |= limited;
         let after = path.sample(&self.episode_path, t + self.dt);
