@@ -45,6 +45,7 @@ pub fn summary_json(s: &TrainSummary, final_eval: &EvalSummary, robot: &str) -> 
         "rejected_share": rejected(s).1,
         "unsettled_starts": s.unsettled_starts,
         "observer_saturated": s.observer_saturated,
+        "rollbacks": s.rollbacks,
         "max_stage": s.episode_log.iter().map(|e| e.stage).max(),
         "episode_log": s.episode_log,
         "learning_curve": curve_points(&s.learning_curve),

@@ -79,6 +79,10 @@ pub struct ChangeRow {
     /// The re-adapting run's safety.
     pub aborted_episodes: u64,
     pub braked_episodes: u64,
+    /// Times the re-adapting learner was rolled back to its last checkpoint
+    /// (`adaptation.rollback_after`).
+    #[serde(default)]
+    pub rollbacks: u64,
     pub max_command_step: f64,
     pub max_torque_rate: f64,
     /// The re-adaptation's largest level.
@@ -278,6 +282,7 @@ pub fn run(setup: &Setup, learner: &Learner, key: &str, sizes: &Sizes) -> Result
         }),
         aborted_episodes: summary.aborted_episodes,
         braked_episodes: summary.braked_episodes,
+        rollbacks: summary.rollbacks,
         max_command_step: summary.max_command_step,
         max_torque_rate: summary.max_torque_rate,
         adaptation_peak_level: peak,

@@ -52,7 +52,10 @@ pub(crate) fn table(r: &Results) -> String {
                 a.map_or("—".into(), |a| minutes(a.minutes_to_1mm)),
                 a.map_or("—".into(), |a| minutes(a.minutes_to_2x_nominal)),
                 a.map_or("—".into(), |a| or_diverged(a.tracking_rms_mm)),
-                format!("{} / {}", v.aborted_episodes, v.braked_episodes),
+                format!(
+                    "{} / {} / {}",
+                    v.aborted_episodes, v.braked_episodes, v.rollbacks
+                ),
             ]);
         }
     }
@@ -69,7 +72,7 @@ pub(crate) fn table(r: &Results) -> String {
         "after removal: to ≤ 1 mm [min]",
         "to ≤ 2× nominal [min]",
         "at the end [mm]",
-        "aborted / braked episodes",
+        "aborted / braked episodes / rollbacks",
     ];
     html_table(&head, &rows)
 }

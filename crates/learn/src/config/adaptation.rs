@@ -87,6 +87,16 @@ pub struct AdaptationConfig {
     /// Default false: the learned controller of the paper's experiments is the learned command
     /// alone.
     pub observer_always: bool,
+    /// After this many on-policy episodes in a row that braked or aborted while re-adapting,
+    /// the learner goes back to its state after the last episode that completed (or at the
+    /// run's start), its counters kept; counted (`rollbacks`). 0: never. Default 3: a learner
+    /// whose learning has broken its command keeps braking at the command-jump guard, while
+    /// the controller it had still tracks (`docs/decisions.md`, D35).
+    pub rollback_after: u32,
+    /// After each rollback the re-adaptation's strength is capped at this times the cap before
+    /// it (in [0, 1]; the cap starts at 1), so the learning that broke the command does not
+    /// repeat itself at the same strength. Default 0.5.
+    pub rollback_damping: f64,
 }
 
 /// Which prediction error the re-adaptation's level is made of (`docs/learner.md`,
@@ -129,6 +139,8 @@ impl Default for AdaptationConfig {
             observer_seconds: 0.02,
             observer_max: 5.0,
             observer_always: false,
+            rollback_after: 3,
+            rollback_damping: 0.5,
         }
     }
 }
@@ -190,6 +202,10 @@ impl AdaptationConfig {
             (
                 "observer_max",
                 self.observer_max > 0.0 && self.observer_max.is_finite(),
+            ),
+            (
+                "rollback_damping",
+                (0.0..=1.0).contains(&self.rollback_damping),
             ),
         ];
         match checks.iter().find(|(_, ok)| !ok) {

@@ -14,7 +14,7 @@ use serde::Serialize;
 /// The re-adaptation's state: the running level of the error ratio and the strength it gives.
 /// It is not saved with the learner: [`crate::Learner::reset_adaptation`] starts it afresh (the
 /// fields' own residuals, which are saved, are its reference).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct AdaptationSignal {
     /// Running level of the error ratio (about 1 where the fields predict as well as they fit).
     pub level: f64,
@@ -26,6 +26,22 @@ pub struct AdaptationSignal {
     pub checks: u64,
     /// Learning steps taken with a strength above 0 since the last reset.
     pub adapting_steps: u64,
+    /// Upper bound on the strength (1 unless the driver lowered it after a rollback,
+    /// `adaptation.rollback_damping`).
+    pub cap: f64,
+}
+
+impl Default for AdaptationSignal {
+    fn default() -> Self {
+        Self {
+            level: 0.0,
+            strength: 0.0,
+            peak_level: 0.0,
+            checks: 0,
+            adapting_steps: 0,
+            cap: 1.0,
+        }
+    }
 }
 
 /// The error ratio of one check is capped at this, so one wild sample moves the level by a
@@ -47,7 +63,7 @@ impl AdaptationSignal {
         let target =
             ((self.level - cfg.on_ratio) / (cfg.full_ratio - cfg.on_ratio)).clamp(0.0, 1.0);
         let release = dt_check / cfg.release_seconds;
-        self.strength = target.max(self.strength - release).max(0.0);
+        self.strength = target.max(self.strength - release).clamp(0.0, self.cap);
     }
 
     /// The extra forgetting factors `(dynamics, controller)` for a field with activation `w`.

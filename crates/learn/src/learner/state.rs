@@ -121,6 +121,38 @@ impl Learner {
         self.adapt = AdaptationSignal::default();
     }
 
+    /// Caps the re-adaptation's strength at `cap` (clamped to [0, 1]; NaN leaves it as it
+    /// is), from the next check of the prediction error on (`adaptation.rollback_damping`).
+    pub fn cap_adaptation(&mut self, cap: f64) {
+        if !cap.is_nan() {
+            self.adapt.cap = cap.clamp(0.0, 1.0);
+            self.adapt.strength = self.adapt.strength.min(self.adapt.cap);
+        }
+    }
+
+    /// Goes back to `checkpoint` (a clone of this learner taken earlier): its models, its
+    /// controllers and its re-adaptation, but this learner's counters ([`Self::stats`]), which
+    /// count what happened on the robot.
+    ///
+    /// # Errors
+    /// [`LearnError::InvalidConfig`] if `checkpoint` is for other dimensions; nothing changes.
+    pub fn restore(&mut self, checkpoint: &Learner) -> Result<()> {
+        if checkpoint.dims() != self.dims() || checkpoint.dt != self.dt {
+            return Err(LearnError::InvalidConfig(format!(
+                "a checkpoint for {:?} joints and task at dt {} cannot restore a learner for {:?} \
+                 at {}",
+                checkpoint.dims(),
+                checkpoint.dt,
+                self.dims(),
+                self.dt
+            )));
+        }
+        let stats = self.stats;
+        self.clone_from(checkpoint);
+        self.stats = stats;
+        Ok(())
+    }
+
     /// Sets the re-adaptation settings (e.g. on a loaded controller).
     ///
     /// # Errors

@@ -94,9 +94,11 @@ pub struct TrainConfig {
     /// episode's start and end), the sent command fades from the last one to the new source's
     /// over this long (s), instead of jumping. Default 0.25.
     pub switch_seconds: f64,
-    /// The same for the first on-policy episode (s): the learned controller, trained on babbling
-    /// data only, takes over from the PD hold slowly while it learns from its first on-policy
-    /// samples. Default 5.
+    /// The same for the first on-policy episode after the babbling (s): the learned controller,
+    /// trained on babbling data only, takes over from the PD hold slowly while it learns from
+    /// its first on-policy samples. Default 5. A continuation (no babbling, `osrl adapt`)
+    /// switches its first episode in `switch_seconds`: its controller is trained, and over 5 s
+    /// the arm stayed at home under the hold's fixed torque while the path moved away.
     pub first_switch_seconds: f64,
     /// The same after an episode braked or aborted on its task error (s): short, so the PD
     /// return home takes over before the error grows. Default 0.05.

@@ -21,6 +21,9 @@ mod posture_holds;
 mod postures;
 #[cfg(test)]
 mod postures_tests;
+mod rollback;
+#[cfg(test)]
+mod rollback_tests;
 mod safety;
 #[cfg(test)]
 mod step_limit_tests;

@@ -95,6 +95,10 @@ pub struct EpisodeRecord {
     pub outcome: EpisodeOutcome,
     /// The joint whose refused command jumped first (braked on a step), else `None`.
     pub jump_joint: Option<usize>,
+    /// Whether the learner was rolled back to its last checkpoint after this episode
+    /// (`adaptation.rollback_after`).
+    #[serde(default)]
+    pub rolled_back: bool,
 }
 
 impl Progress {

@@ -22,12 +22,14 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
         // first episode's fade starts from zero torque unless the hold at home comes first,
         // from the hold's own command (`hold_before_continuation`).
         let continuation = self.steps == 0;
+        self.continuation = continuation;
         self.learner
             .freeze_static_gravity(continuation && self.cfg.freeze_static_in_continuation);
         let mut hold_first = continuation && self.cfg.hold_before_continuation;
         if hold_first {
             self.hold_command()?;
         }
+        self.rollback_start();
         while !self.done() {
             let away = std::mem::take(&mut hold_first) || self.away_from_home();
             if away && !self.return_home()? {
@@ -63,7 +65,8 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
         // The fade from the PD hold takes the switch; the learner's own limiter starts afresh.
         self.learner.start_episode(None);
         self.dob.reset();
-        let first = self.progress.episodes == 1;
+        // A continuation's controller is trained: its first episode switches as any other.
+        let first = self.progress.episodes == 1 && !self.continuation;
         self.begin_fade(if first {
             cfg.first_switch_seconds
         } else {
@@ -78,6 +81,8 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
             (_, true, false) => EpisodeOutcome::BrakedOnError,
             _ => EpisodeOutcome::Completed,
         };
+        let failed = report.aborted || report.braked;
+        let rolled_back = self.rollback_after_episode(failed)?;
         self.episode_log.push(EpisodeRecord {
             start_minute,
             stage: stage_index,
@@ -85,8 +90,8 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
             rms_error_mm: report.rms_error * 1e3,
             outcome,
             jump_joint: self.jump_joint.take().filter(|_| report.braked),
+            rolled_back,
         });
-        let failed = report.aborted || report.braked;
         let cc = &cfg.curriculum;
         self.curriculum
             .after_episode(failed, report.rms_error, cc.advance_error);

@@ -69,6 +69,10 @@ pub struct TrainSummary {
     /// `adaptation.observer_max` (0 with the observer off).
     #[serde(default)]
     pub observer_saturated: u64,
+    /// Times the re-adapting learner was restored to its state after the last completed
+    /// episode, after `adaptation.rollback_after` failed episodes in a row (`rollback.rs`).
+    #[serde(default)]
+    pub rollbacks: u64,
     /// Episode paths drawn from a path source (0 when every episode ran the task path).
     #[serde(default)]
     pub paths_drawn: u64,
@@ -174,6 +178,10 @@ pub struct Trainer<'a, R: Robot + ?Sized> {
     /// static gravity model alone (while `learning` is false: the holds at those postures).
     pub(super) postures: super::posture_holds::PosturePool,
     pub(super) static_only: bool,
+    /// The checkpoint of the re-adapting learner and the rollbacks to it (`rollback.rs`).
+    pub(super) rollback: super::rollback::Rollback,
+    /// Whether the on-policy phase continues a trained learner (no babbling before it).
+    pub(super) continuation: bool,
     wall: Instant,
 }
 
@@ -264,6 +272,8 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
             paths_drawn: 0,
             postures: Default::default(),
             static_only: false,
+            rollback: Default::default(),
+            continuation: false,
             wall,
         })
     }
@@ -450,6 +460,7 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
             n_local_models: self.learner.n_local_models(),
             unsettled_starts: self.unsettled_starts,
             observer_saturated: self.dob.saturated(),
+            rollbacks: self.rollback.count,
             paths_drawn: self.paths_drawn,
             episode_log: std::mem::take(&mut self.episode_log),
         }
