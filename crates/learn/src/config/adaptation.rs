@@ -97,6 +97,9 @@ pub struct AdaptationConfig {
     /// it (in [0, 1]; the cap starts at 1), so the learning that broke the command does not
     /// repeat itself at the same strength. Default 0.5.
     pub rollback_damping: f64,
+    /// Upper bound on the re-adaptation's strength (in (0, 1]). Default 1: the strength follows
+    /// the level alone; lower values soften every part of the response at once.
+    pub max_strength: f64,
 }
 
 /// Which prediction error the re-adaptation's level is made of (`docs/learner.md`,
@@ -141,6 +144,7 @@ impl Default for AdaptationConfig {
             observer_always: false,
             rollback_after: 3,
             rollback_damping: 0.5,
+            max_strength: 1.0,
         }
     }
 }
@@ -207,6 +211,7 @@ impl AdaptationConfig {
                 "rollback_damping",
                 (0.0..=1.0).contains(&self.rollback_damping),
             ),
+            ("max_strength", unit(self.max_strength)),
         ];
         match checks.iter().find(|(_, ok)| !ok) {
             Some((what, _)) => Err(LearnError::InvalidConfig(format!(
@@ -266,6 +271,35 @@ mod tests {
             let e = c.validate().unwrap_err().to_string();
             assert!(e.contains("observer_max"), "{e}");
         }
+    }
+
+    /// The rollback's damping is in [0, 1] and the strength's bound in (0, 1]; outside, or NaN,
+    /// each is refused by name.
+    #[test]
+    fn the_rollback_settings_are_checked() {
+        for bad in [-0.1, 1.5, f64::NAN] {
+            let c = AdaptationConfig {
+                rollback_damping: bad,
+                ..AdaptationConfig::default()
+            };
+            let e = c.validate().unwrap_err().to_string();
+            assert!(e.contains("rollback_damping"), "{e}");
+        }
+        for bad in [0.0, -0.5, 1.01, f64::NAN] {
+            let c = AdaptationConfig {
+                max_strength: bad,
+                ..AdaptationConfig::default()
+            };
+            let e = c.validate().unwrap_err().to_string();
+            assert!(e.contains("max_strength"), "{e}");
+        }
+        let ok = AdaptationConfig {
+            rollback_after: 0,
+            rollback_damping: 0.0,
+            max_strength: 0.25,
+            ..AdaptationConfig::default()
+        };
+        assert!(ok.validate().is_ok());
     }
 
     /// The two floors of the error ratio are positive and finite, and refused by name

@@ -63,7 +63,8 @@ impl AdaptationSignal {
         let target =
             ((self.level - cfg.on_ratio) / (cfg.full_ratio - cfg.on_ratio)).clamp(0.0, 1.0);
         let release = dt_check / cfg.release_seconds;
-        self.strength = target.max(self.strength - release).clamp(0.0, self.cap);
+        let cap = self.cap.min(cfg.max_strength);
+        self.strength = target.max(self.strength - release).clamp(0.0, cap);
     }
 
     /// The extra forgetting factors `(dynamics, controller)` for a field with activation `w`.
@@ -86,5 +87,38 @@ impl AdaptationSignal {
     /// The factor on the RWR trust region.
     pub(crate) fn trust_scale(&self, cfg: &AdaptationConfig) -> f64 {
         1.0 + self.strength * (cfg.trust_scale - 1.0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::AdaptationSignal;
+    use crate::config::AdaptationConfig;
+
+    /// The strength after `checks` checks of a large error ratio (the level far above
+    /// `full_ratio`).
+    fn strength_after_a_change(cfg: &AdaptationConfig, cap: f64) -> f64 {
+        let mut s = AdaptationSignal {
+            cap,
+            ..AdaptationSignal::default()
+        };
+        for _ in 0..200 {
+            s.observe(cfg, 1e3, 1.0, 0.05);
+        }
+        s.strength
+    }
+
+    /// A large error gives full strength; the rollback's cap and `max_strength` each bound it.
+    #[test]
+    fn the_strength_is_capped() {
+        let cfg = AdaptationConfig::default();
+        assert_eq!(strength_after_a_change(&cfg, 1.0), 1.0);
+        assert_eq!(strength_after_a_change(&cfg, 0.25), 0.25);
+        let half = AdaptationConfig {
+            max_strength: 0.5,
+            ..AdaptationConfig::default()
+        };
+        assert_eq!(strength_after_a_change(&half, 1.0), 0.5);
+        assert_eq!(strength_after_a_change(&half, 0.25), 0.25);
     }
 }
