@@ -87,9 +87,10 @@ pub struct AdaptationConfig {
     /// Default false: the learned controller of the paper's experiments is the learned command
     /// alone.
     pub observer_always: bool,
-    /// After this many on-policy episodes in a row that braked or aborted while re-adapting,
-    /// the learner goes back to its state after the last episode that completed (or at the
-    /// run's start), its counters kept; counted (`rollbacks`). 0: never. Default 3: a learner
+    /// After this many on-policy episodes in a row that braked or aborted while a trained
+    /// learner re-adapts (a run without babbling: `osrl adapt`, E8), the learner goes back to
+    /// its state after the last episode that completed (or at the start of the on-policy
+    /// phase), its counters kept; counted (`rollbacks`). 0: never. Default 3: a learner
     /// whose learning has broken its command keeps braking at the command-jump guard, while
     /// the controller it had still tracks (`docs/decisions.md`, D35).
     pub rollback_after: u32,

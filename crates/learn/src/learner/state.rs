@@ -131,8 +131,11 @@ impl Learner {
     }
 
     /// Goes back to `checkpoint` (a clone of this learner taken earlier): its models, its
-    /// controllers and its re-adaptation, but this learner's counters ([`Self::stats`]), which
-    /// count what happened on the robot.
+    /// controllers, its load correction and its re-adaptation's level and strength — and its
+    /// config and flags, which the training driver leaves as they were. Kept from this learner:
+    /// the counters ([`Self::stats`], whose sample count is the learner's clock), the
+    /// re-adaptation's peak level and step counts (they count what happened on the robot, and
+    /// a change once detected stays detected) and the preallocated scratch buffers.
     ///
     /// # Errors
     /// [`LearnError::InvalidConfig`] if `checkpoint` is for other dimensions; nothing changes.
@@ -147,9 +150,14 @@ impl Learner {
                 self.dt
             )));
         }
-        let stats = self.stats;
+        let (stats, signal) = (self.stats, self.adapt);
+        let ws = std::mem::replace(&mut self.ws, checkpoint.ws.clone());
         self.clone_from(checkpoint);
+        self.ws = ws;
         self.stats = stats;
+        self.adapt.peak_level = signal.peak_level.max(self.adapt.peak_level);
+        self.adapt.checks = signal.checks;
+        self.adapt.adapting_steps = signal.adapting_steps;
         Ok(())
     }
 

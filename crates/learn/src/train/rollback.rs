@@ -1,7 +1,9 @@
 //! The rollback of a re-adaptation that broke the learned command (`docs/learner.md`,
-//! "Re-adaptation"; `docs/decisions.md`, D35): while the learner re-adapts
-//! (`adaptation.enabled`), the driver keeps a copy of it from the end of the last on-policy
-//! episode that completed (at first: from the start of the on-policy phase). After
+//! "Re-adaptation"; `docs/decisions.md`, D35): while a trained learner re-adapts (a
+//! continuation with `adaptation.enabled`: `osrl adapt`, E8), the driver keeps a copy of it from
+//! the end of the last on-policy episode that completed (at first: from the start of the
+//! on-policy phase). A run that babbles first (`osrl train --change-at`) never rolls back: its
+//! early episodes fail while it learns, and a copy from the babbling would undo that. After
 //! `adaptation.rollback_after` episodes in a row that braked or aborted, it restores that copy
 //! (the learner's counters kept) and caps the re-adaptation's strength at
 //! `adaptation.rollback_damping` times its cap before, so the learning that broke the command
@@ -25,13 +27,14 @@ pub(super) struct Rollback {
 }
 
 impl<R: Robot + ?Sized> Trainer<'_, R> {
-    /// At the start of the on-policy phase: the first checkpoint, if the learner re-adapts and
-    /// rollbacks are on.
+    /// At the start of the on-policy phase: the first checkpoint, if this run continues a
+    /// trained learner that re-adapts, and rollbacks are on.
     pub(super) fn rollback_start(&mut self) {
         let ad = &self.learner.config().adaptation;
+        let on = self.continuation && ad.enabled && ad.rollback_after > 0;
         self.rollback = Rollback {
-            checkpoint: (ad.enabled && ad.rollback_after > 0).then(|| self.learner.clone()),
-            cap: 1.0,
+            checkpoint: on.then(|| self.learner.clone()),
+            cap: self.learner.adaptation().cap,
             ..Rollback::default()
         };
     }

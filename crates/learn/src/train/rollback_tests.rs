@@ -55,10 +55,16 @@ impl LearnerConfigFor4 {
     }
 }
 
-/// A continuation of `seconds` on planar3 in which every episode aborts at once (`reset_error`
-/// tiny), with the re-adaptation on and `rollback_after`; returns the summary and the learner.
-fn failing_continuation(rollback_after: u32, enabled: bool) -> (super::TrainSummary, Learner) {
-    let (mut learner, _, _) = fixture::ready(fixture::config(), 200, 1000);
+/// A run of 0.3 minutes on planar3 (a continuation, or 0.1 minutes of babbling first) in which
+/// every episode aborts at once (`reset_error` tiny), with the re-adaptation `enabled` and
+/// `rollback_after`; the returns home learn nothing. Returns the summary and the learner.
+fn failing_run(
+    rollback_after: u32,
+    enabled: bool,
+    babble_minutes: f64,
+    learner: Learner,
+) -> (super::TrainSummary, Learner) {
+    let mut learner = learner;
     learner
         .set_adaptation(AdaptationConfig {
             enabled,
@@ -70,8 +76,9 @@ fn failing_continuation(rollback_after: u32, enabled: bool) -> (super::TrainSumm
     let traj = TrajectoryConfig::default().build(&model).unwrap();
     let cfg = TrainConfig {
         reset_error: 1e-9,
+        learn_returning_home: false,
         babble: crate::train::BabbleConfig {
-            minutes: 0.0,
+            minutes: babble_minutes,
             ..Default::default()
         },
         ..fixture::short_training(0.3)
@@ -95,9 +102,15 @@ fn failing_continuation(rollback_after: u32, enabled: bool) -> (super::TrainSumm
     (summary, learner)
 }
 
+/// A continuation of [`failing_run`] from the fixture's learner.
+fn failing_continuation(rollback_after: u32, enabled: bool) -> (super::TrainSummary, Learner) {
+    let (learner, _, _) = fixture::ready(fixture::config(), 200, 1000);
+    failing_run(rollback_after, enabled, 0.0, learner)
+}
+
 /// Every episode fails: with `rollback_after = 2` every second episode rolls back (marked in
 /// the episode log) and each halves the strength's cap; with rollbacks off, or the
-/// re-adaptation off, none happens.
+/// re-adaptation off, or after babbling (not a continuation), none happens.
 #[test]
 fn failed_episodes_in_a_row_roll_the_learner_back() {
     let (s, learner) = failing_continuation(2, true);
@@ -115,4 +128,36 @@ fn failed_episodes_in_a_row_roll_the_learner_back() {
         assert!(s.episode_log.iter().all(|e| !e.rolled_back));
         assert_eq!(l.adaptation().cap, 1.0);
     }
+    let fresh = Learner::new(3, 2, 0.002, fixture::config()).unwrap();
+    let (s, _) = failing_run(2, true, 0.1, fresh);
+    assert!(s.episodes >= 2 && s.aborted_episodes == s.episodes, "{s:?}");
+    assert_eq!(s.rollbacks, 0);
+}
+
+/// With `rollback_after = 1` every failed episode rolls back and nothing else learns (the
+/// returns home do not): the learner ends with the models it started with, byte for byte,
+/// although its episodes learned (without the rollback it ends elsewhere).
+#[test]
+fn a_rollback_restores_the_models_the_episodes_changed() {
+    let (start, _, _) = fixture::ready(fixture::config(), 200, 1000);
+    let (s, end) = failing_run(1, true, 0.0, start.clone());
+    assert!(s.rollbacks >= 2 && s.rollbacks == s.episodes, "{s:?}");
+    let ran = end.stats();
+    assert!(
+        ran.samples > start.stats().samples,
+        "the episodes learned nothing"
+    );
+    assert!(models(&end) == models(&start), "the models differ");
+    let (_, kept) = failing_run(0, true, 0.0, start.clone());
+    assert!(
+        models(&kept) != models(&start),
+        "without the rollback the episodes changed nothing"
+    );
+}
+
+/// The learner's models and load correction as bytes (not its flags: the driver freezes `ĝ`).
+fn models(l: &Learner) -> Vec<u8> {
+    let mut b = postcard::to_allocvec(&l.state.models()).unwrap();
+    b.extend(postcard::to_allocvec(&l.load).unwrap());
+    b
 }

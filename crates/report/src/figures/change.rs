@@ -1,6 +1,6 @@
 //! E8's figure: per robot, one panel per change — the tracking of the learned controller
-//! re-adapting, the same frozen, and eq. 7 with the stale model over the timeline, the change
-//! (and its removal) marked.
+//! re-adapting, the same frozen (and frozen with the disturbance observer, on the changed arm),
+//! and eq. 7 with the stale model over the timeline, the change (and its removal) marked.
 
 use crate::plot::{Figure, Panel, Series, Style, PALETTE};
 use osrl_experiments::e8::ChangeRow;
@@ -56,7 +56,13 @@ pub fn timelines(robot: &str, rows: &BTreeMap<String, ChangeRow>) -> Figure {
                 r.eq7_stale_tracking_rms_mm,
             ),
         ];
-        let all: Vec<f64> = (drawn.iter().flatten())
+        // The frozen controller with the disturbance observer, measured on the changed arm
+        // only (E8 runs it there alone): a step over the change.
+        let end_of_change = r.revert_at_minutes.unwrap_or(t_end);
+        let observer: Vec<(f64, f64)> = (r.observer_frozen_tracking_rms_mm.into_iter())
+            .flat_map(|d| [(r.change_at_minutes, d), (end_of_change, d)])
+            .collect();
+        let all: Vec<f64> = (drawn.iter().flatten().chain(&observer))
             .map(|p| p.1)
             .filter(|y| y.is_finite() && *y > 0.0)
             .collect();
@@ -84,6 +90,19 @@ pub fn timelines(robot: &str, rows: &BTreeMap<String, ChangeRow>) -> Figure {
                 let text = format!("{label}: diverged (> 0.2 m)");
                 p = p.with(Series::markers(&text, diverged).color(c));
             }
+        }
+        if !observer.is_empty() {
+            let label = "learned, frozen + observer";
+            p = p.with(Series::line(label, observer).color(PALETTE[3]));
+        } else if r
+            .diverged
+            .iter()
+            .any(|d| d == "observer_frozen_tracking_rms_mm")
+        {
+            any_diverged = true;
+            let mark = vec![(r.change_at_minutes, DIVERGED_MM)];
+            let label = "learned, frozen + observer: diverged (> 0.2 m)";
+            p = p.with(Series::markers(label, mark).color(PALETTE[3]));
         }
         let hi = if any_diverged {
             hi.max(DIVERGED_MM)
