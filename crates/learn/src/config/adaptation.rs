@@ -65,8 +65,9 @@ pub struct AdaptationConfig {
     /// false.
     pub freeze_partition: bool,
     /// Least strength at which the load correction keeps learning once a change has been
-    /// detected (in [0, 1]). Default 1: it keeps converging after the local dynamics fit again
-    /// (0: it learns at the re-adaptation's strength and stops with it; D33, D34).
+    /// detected (in [0, 1]; a rollback to a checkpoint from before the detection undoes it).
+    /// Default 1: it keeps converging after the local dynamics fit again (0: it learns at the
+    /// re-adaptation's strength and stops with it; D33, D34; D35 for the rollback).
     pub load_floor: f64,
     /// What the error ratio compares (see [`AdaptationSource`]). Default `dynamics`.
     pub signal: AdaptationSource,

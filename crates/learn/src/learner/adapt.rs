@@ -26,6 +26,10 @@ pub struct AdaptationSignal {
     pub checks: u64,
     /// Learning steps taken with a strength above 0 since the last reset.
     pub adapting_steps: u64,
+    /// Whether this learner's models have re-adapted (a strength above 0) since the last
+    /// reset: the load correction then keeps learning (`load_floor`). A rollback restores it
+    /// with the models; the counters above keep counting the run.
+    pub detected: bool,
     /// Upper bound on the strength (1 unless the driver lowered it after a rollback,
     /// `adaptation.rollback_damping`).
     pub cap: f64,
@@ -39,6 +43,7 @@ impl Default for AdaptationSignal {
             peak_level: 0.0,
             checks: 0,
             adapting_steps: 0,
+            detected: false,
             cap: 1.0,
         }
     }

@@ -272,7 +272,7 @@ impl Step<'_> {
     fn learn_load(&mut self, cur: &Measurement) -> Result<()> {
         let ad = &self.cfg.adaptation;
         let on = ad.enabled && ad.load_correction && self.cfg.experimental.residual;
-        let detected = self.adapt.strength > 0.0 || self.adapt.adapting_steps > 0;
+        let detected = self.adapt.strength > 0.0 || self.adapt.detected;
         let strength = if detected {
             self.adapt.strength.max(ad.load_floor)
         } else {
@@ -416,6 +416,7 @@ impl Step<'_> {
         }
         if adapting {
             self.adapt.adapting_steps += 1;
+            self.adapt.detected = true;
         }
         if check {
             let dt_check = ad.check_every as f64 * self.dt;

@@ -131,11 +131,11 @@ impl Learner {
     }
 
     /// Goes back to `checkpoint` (a clone of this learner taken earlier): its models, its
-    /// controllers, its load correction and its re-adaptation's level and strength — and its
-    /// config and flags, which the training driver leaves as they were. Kept from this learner:
-    /// the counters ([`Self::stats`], whose sample count is the learner's clock), the
-    /// re-adaptation's peak level and step counts (they count what happened on the robot, and
-    /// a change once detected stays detected) and the preallocated scratch buffers.
+    /// controllers, its load correction and its re-adaptation's level, strength and whether
+    /// it had detected a change — and its config and flags, which the training driver leaves
+    /// as they were. Kept from this learner: the counters ([`Self::stats`], whose sample count
+    /// is the learner's clock), the re-adaptation's peak level and counts (they count what
+    /// happened on the robot) and the preallocated scratch buffers.
     ///
     /// # Errors
     /// [`LearnError::InvalidConfig`] if `checkpoint` is for other dimensions; nothing changes.
