@@ -43,7 +43,14 @@ pub struct Dob {
     sent: Vec<f64>,
     primed: bool,
     saturated: u64,
+    /// `d̂` low-passed over [`SLOW_SECONDS`]: the persistent part of what the command misses
+    /// (the exploration's effect averages out of it).
+    slow: Vec<f64>,
+    slow_alpha: f64,
 }
+
+/// Time constant of the observer's slow estimate `d̄` (s): the re-adaptation level's own.
+pub const SLOW_SECONDS: f64 = 0.5;
 
 impl Dob {
     /// An observer for an `m`-D task at the control period `dt` (s) with the time constant
@@ -61,6 +68,8 @@ impl Dob {
             sent: vec![0.0; m],
             primed: false,
             saturated: 0,
+            slow: vec![0.0; m],
+            slow_alpha: (dt / SLOW_SECONDS).min(1.0),
         }
     }
 
@@ -72,7 +81,14 @@ impl Dob {
     /// Forgets the estimate and the last reference (a new episode, a new run).
     pub fn reset(&mut self) {
         self.d.fill(0.0);
+        self.slow.fill(0.0);
         self.primed = false;
+    }
+
+    /// The norm of the slow estimate `‖d̄‖` (m/s², 0 when off): a change of the robot that
+    /// the learned command misses along the path (`adaptation.offset_floor`).
+    pub fn offset(&self) -> f64 {
+        self.slow.iter().map(|v| v * v).sum::<f64>().sqrt()
     }
 
     /// The current estimate `d̂` (m/s²).
@@ -100,6 +116,9 @@ impl Dob {
                 let k = self.max / norm;
                 self.d.iter_mut().for_each(|v| *v *= k);
                 self.saturated += 1;
+            }
+            for (s, d) in self.slow.iter_mut().zip(&self.d) {
+                *s += self.slow_alpha * (d - *s);
             }
         }
         for ((r, d), s) in xdd_ref.iter_mut().zip(&self.d).zip(self.sent.iter_mut()) {
@@ -155,5 +174,35 @@ mod tests {
         let mut r = target;
         small.correct(&[50.0, 50.0], false, &mut r);
         assert_eq!(small.estimate(), &held[..]);
+    }
+
+    /// The slow estimate `d̄` follows a constant offset (after a few `SLOW_SECONDS`), so its
+    /// norm is the offset's; an offset that flips sign every few periods (like fast
+    /// exploration) averages out of it while `d̂` follows it; a reset clears it.
+    #[test]
+    fn the_slow_estimate_keeps_the_persistent_part() {
+        let dt = 0.002;
+        let run = |flip: usize| {
+            let mut dob = Dob::new(2, dt, 0.02, 5.0);
+            let mut xdd = [0.0; 2];
+            for k in 0..3000 {
+                let sign = if flip > 0 && (k / flip) % 2 == 1 {
+                    -1.0
+                } else {
+                    1.0
+                };
+                let mut r = [0.0; 2];
+                dob.correct(&xdd, true, &mut r);
+                xdd = [r[0] + sign * 0.6, r[1] - sign * 0.8];
+            }
+            dob
+        };
+        let steady = run(0);
+        assert!((steady.offset() - 1.0).abs() < 1e-3, "{}", steady.offset());
+        let flipping = run(25);
+        assert!(flipping.offset() < 0.15, "{}", flipping.offset());
+        let mut steady = steady;
+        steady.reset();
+        assert_eq!(steady.offset(), 0.0);
     }
 }

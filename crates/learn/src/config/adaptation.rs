@@ -102,6 +102,15 @@ pub struct AdaptationConfig {
     /// Upper bound on the re-adaptation's strength (in (0, 1]). Default 1: the strength follows
     /// the level alone; lower values soften every part of the response at once.
     pub max_strength: f64,
+    /// The disturbance observer's slow estimate `‖d̄‖` (`d̂` low-passed over 0.5 s; m/s²) at
+    /// which its ratio `(‖d̄‖ / offset_floor)²` is 1 (≥ 0; 0: the observer does not feed the
+    /// level). The ratio joins the local dynamics' error ratio while an episode of a trained
+    /// learner runs (a continuation: `osrl adapt`, E8; not after babbling): a payload
+    /// is an offset of `ẍ` that the difference form of the local dynamics does not see and that
+    /// the observer cancels within a few `T`, so a change made during tracking could go
+    /// undetected. Default 1: on the unchanged arms `‖d̄‖` stays below about 1.4 (planar3) and
+    /// 0.7 (sarcos7), so the ratio stays below `on_ratio` (D35).
+    pub offset_floor: f64,
 }
 
 /// Which prediction error the re-adaptation's level is made of (`docs/learner.md`,
@@ -147,6 +156,7 @@ impl Default for AdaptationConfig {
             rollback_after: 3,
             rollback_damping: 0.5,
             max_strength: 1.0,
+            offset_floor: 1.0,
         }
     }
 }
@@ -214,6 +224,10 @@ impl AdaptationConfig {
                 (0.0..=1.0).contains(&self.rollback_damping),
             ),
             ("max_strength", unit(self.max_strength)),
+            (
+                "offset_floor",
+                self.offset_floor >= 0.0 && self.offset_floor.is_finite(),
+            ),
         ];
         match checks.iter().find(|(_, ok)| !ok) {
             Some((what, _)) => Err(LearnError::InvalidConfig(format!(
@@ -295,7 +309,16 @@ mod tests {
             let e = c.validate().unwrap_err().to_string();
             assert!(e.contains("max_strength"), "{e}");
         }
+        for bad in [-1.0, f64::NAN, f64::INFINITY] {
+            let c = AdaptationConfig {
+                offset_floor: bad,
+                ..AdaptationConfig::default()
+            };
+            let e = c.validate().unwrap_err().to_string();
+            assert!(e.contains("offset_floor"), "{e}");
+        }
         let ok = AdaptationConfig {
+            offset_floor: 0.0,
             rollback_after: 0,
             rollback_damping: 0.0,
             max_strength: 0.25,

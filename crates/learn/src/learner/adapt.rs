@@ -6,9 +6,14 @@
 //! (factor `λ^(a·w)` per sample, `w` its activation), re-solves its dynamics at every M-step,
 //! weights new samples by a cost shrunk by `1 − a` and may move its controller further per
 //! M-step (trust region × `1 + a (s − 1)`). When the level falls back, `a` is released over
-//! `release_seconds`. Fields the arm does not visit forget nothing.
+//! `release_seconds`. Fields the arm does not visit forget nothing. Until a change has been
+//! detected, the training driver's disturbance observer feeds the level too
+//! ([`Learner::observe_offset`]); [`Learner::restore`] and [`Learner::cap_adaptation`] serve the
+//! driver's rollback (`train/rollback.rs`).
 
+use super::Learner;
 use crate::config::AdaptationConfig;
+use crate::error::{LearnError, Result};
 use serde::Serialize;
 
 /// The re-adaptation's state: the running level of the error ratio and the strength it gives.
@@ -33,6 +38,9 @@ pub struct AdaptationSignal {
     /// Upper bound on the strength (1 unless the driver lowered it after a rollback,
     /// `adaptation.rollback_damping`).
     pub cap: f64,
+    /// The training driver's disturbance observer, `(‖d̄‖ / offset_floor)²` with `d̄` its slow
+    /// estimate, while an episode runs (0: none).
+    pub offset_ratio: f64,
 }
 
 impl Default for AdaptationSignal {
@@ -45,6 +53,7 @@ impl Default for AdaptationSignal {
             adapting_steps: 0,
             detected: false,
             cap: 1.0,
+            offset_ratio: 0.0,
         }
     }
 }
@@ -54,13 +63,17 @@ impl Default for AdaptationSignal {
 const MAX_RATIO: f64 = 100.0;
 
 impl AdaptationSignal {
-    /// Folds one check's error ratio `se / sv` into the level (`dt_check`: seconds of learning
+    /// Folds one check's error ratio — the larger of the fields' `se / sv` and, until a change
+    /// has been detected, the observer's [`Self::offset_ratio`] — into the level (`dt_check`: seconds of learning
     /// since the last check) and updates the strength.
     pub(crate) fn observe(&mut self, cfg: &AdaptationConfig, se: f64, sv: f64, dt_check: f64) {
-        if !(sv > 0.0) || !se.is_finite() {
+        let fields = (sv > 0.0 && se.is_finite()).then(|| se / sv);
+        // The observer detects; once the models have re-adapted, the fields' ratio governs.
+        let offset = (self.offset_ratio > 0.0 && !self.detected).then_some(self.offset_ratio);
+        let Some(ratio) = fields.into_iter().chain(offset).reduce(f64::max) else {
             return;
-        }
-        let ratio = (se / sv).min(MAX_RATIO);
+        };
+        let ratio = ratio.min(MAX_RATIO);
         let alpha = (dt_check / cfg.time_constant).min(1.0);
         self.level += alpha * (ratio - self.level);
         self.peak_level = self.peak_level.max(self.level);
@@ -95,6 +108,62 @@ impl AdaptationSignal {
     }
 }
 
+impl Learner {
+    /// The training driver's disturbance observer's slow estimate `‖d̄‖` (m/s²,
+    /// [`crate::Dob::offset`]; 0 when it stops): while the learner re-adapts and
+    /// `adaptation.offset_floor > 0`, `(‖d̄‖ / offset_floor)²` joins the error ratio of the next
+    /// checks (the larger of it and the fields' ratio counts). A non-finite value counts as 0.
+    pub fn observe_offset(&mut self, offset: f64) {
+        let a = &self.cfg.adaptation;
+        let on = a.enabled && a.offset_floor > 0.0 && offset.is_finite();
+        self.adapt.offset_ratio = if on {
+            (offset / a.offset_floor).powi(2)
+        } else {
+            0.0
+        };
+    }
+
+    /// Caps the re-adaptation's strength at `cap` (clamped to [0, 1]; NaN leaves it as it
+    /// is), from the next check of the prediction error on (`adaptation.rollback_damping`).
+    pub fn cap_adaptation(&mut self, cap: f64) {
+        if !cap.is_nan() {
+            self.adapt.cap = cap.clamp(0.0, 1.0);
+            self.adapt.strength = self.adapt.strength.min(self.adapt.cap);
+        }
+    }
+
+    /// Goes back to `checkpoint` (a clone of this learner taken earlier): its models, its
+    /// controllers, its load correction and its re-adaptation's level, strength and whether
+    /// it had detected a change — and its config and flags, which the training driver leaves
+    /// as they were. Kept from this learner: the counters ([`Self::stats`], whose sample count
+    /// is the learner's clock), the re-adaptation's peak level and counts (they count what
+    /// happened on the robot) and the preallocated scratch buffers.
+    ///
+    /// # Errors
+    /// [`LearnError::InvalidConfig`] if `checkpoint` is for other dimensions; nothing changes.
+    pub fn restore(&mut self, checkpoint: &Learner) -> Result<()> {
+        if checkpoint.dims() != self.dims() || checkpoint.dt != self.dt {
+            return Err(LearnError::InvalidConfig(format!(
+                "a checkpoint for {:?} joints and task at dt {} cannot restore a learner for {:?} \
+                 at {}",
+                checkpoint.dims(),
+                checkpoint.dt,
+                self.dims(),
+                self.dt
+            )));
+        }
+        let (stats, signal) = (self.stats, self.adapt);
+        let ws = std::mem::replace(&mut self.ws, checkpoint.ws.clone());
+        self.clone_from(checkpoint);
+        self.ws = ws;
+        self.stats = stats;
+        self.adapt.peak_level = signal.peak_level.max(self.adapt.peak_level);
+        self.adapt.checks = signal.checks;
+        self.adapt.adapting_steps = signal.adapting_steps;
+        Ok(())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::AdaptationSignal;
@@ -125,5 +194,38 @@ mod tests {
         };
         assert_eq!(strength_after_a_change(&half, 1.0), 0.5);
         assert_eq!(strength_after_a_change(&half, 0.25), 0.25);
+    }
+
+    /// Until a change has been detected, the observer's ratio drives the level on its own (no
+    /// field's ratio) and with the fields' the larger counts; after, the fields' alone.
+    #[test]
+    fn the_offset_ratio_joins_the_level() {
+        let cfg = AdaptationConfig::default();
+        let level =
+            |offset_ratio: f64, se: f64, sv: f64| level_after(&cfg, offset_ratio, se, sv, false);
+        assert!((level(20.0, 0.0, 0.0) - 20.0).abs() < 1e-9);
+        assert!((level(20.0, 2.0, 1.0) - 20.0).abs() < 1e-9);
+        assert!((level(0.5, 2.0, 1.0) - 2.0).abs() < 1e-9);
+        assert_eq!(level(0.0, 0.0, 0.0), 0.0);
+        assert!((level_after(&cfg, 20.0, 2.0, 1.0, true) - 2.0).abs() < 1e-9);
+    }
+
+    /// The level after many checks of the ratios given.
+    fn level_after(
+        cfg: &AdaptationConfig,
+        offset_ratio: f64,
+        se: f64,
+        sv: f64,
+        detected: bool,
+    ) -> f64 {
+        let mut s = AdaptationSignal {
+            offset_ratio,
+            detected,
+            ..AdaptationSignal::default()
+        };
+        for _ in 0..500 {
+            s.observe(cfg, se, sv, 0.05);
+        }
+        s.level
     }
 }

@@ -121,46 +121,6 @@ impl Learner {
         self.adapt = AdaptationSignal::default();
     }
 
-    /// Caps the re-adaptation's strength at `cap` (clamped to [0, 1]; NaN leaves it as it
-    /// is), from the next check of the prediction error on (`adaptation.rollback_damping`).
-    pub fn cap_adaptation(&mut self, cap: f64) {
-        if !cap.is_nan() {
-            self.adapt.cap = cap.clamp(0.0, 1.0);
-            self.adapt.strength = self.adapt.strength.min(self.adapt.cap);
-        }
-    }
-
-    /// Goes back to `checkpoint` (a clone of this learner taken earlier): its models, its
-    /// controllers, its load correction and its re-adaptation's level, strength and whether
-    /// it had detected a change — and its config and flags, which the training driver leaves
-    /// as they were. Kept from this learner: the counters ([`Self::stats`], whose sample count
-    /// is the learner's clock), the re-adaptation's peak level and counts (they count what
-    /// happened on the robot) and the preallocated scratch buffers.
-    ///
-    /// # Errors
-    /// [`LearnError::InvalidConfig`] if `checkpoint` is for other dimensions; nothing changes.
-    pub fn restore(&mut self, checkpoint: &Learner) -> Result<()> {
-        if checkpoint.dims() != self.dims() || checkpoint.dt != self.dt {
-            return Err(LearnError::InvalidConfig(format!(
-                "a checkpoint for {:?} joints and task at dt {} cannot restore a learner for {:?} \
-                 at {}",
-                checkpoint.dims(),
-                checkpoint.dt,
-                self.dims(),
-                self.dt
-            )));
-        }
-        let (stats, signal) = (self.stats, self.adapt);
-        let ws = std::mem::replace(&mut self.ws, checkpoint.ws.clone());
-        self.clone_from(checkpoint);
-        self.ws = ws;
-        self.stats = stats;
-        self.adapt.peak_level = signal.peak_level.max(self.adapt.peak_level);
-        self.adapt.checks = signal.checks;
-        self.adapt.adapting_steps = signal.adapting_steps;
-        Ok(())
-    }
-
     /// Sets the re-adaptation settings (e.g. on a loaded controller).
     ///
     /// # Errors

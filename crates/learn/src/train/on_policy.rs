@@ -128,6 +128,8 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
             self.postures_record(count);
         }
         self.jump_guard = false;
+        // The observer stops with the episode: its estimate no longer says anything.
+        self.learner.observe_offset(0.0);
         Ok(EpisodeReport {
             seconds: count as f64 * self.dt,
             aborted,
@@ -147,6 +149,11 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
         let learn = !self.sent_modified;
         let (gains, axes) = (&self.cfg.gains, self.axes);
         observed_reference(gains, &target, axes, prev, &mut self.dob, learn, xdd_ref);
+        if self.continuation {
+            // A trained learner's observer tells a change from its own noise (D35); a learner
+            // that babbled first misses much of the path for a while as it learns.
+            self.learner.observe_offset(self.dob.offset());
+        }
         let rng = self.cfg.explore.then_some(&mut self.rng);
         let gain = path.exploration_gain(t, self.cfg.quiet_holds, self.cfg.quiet_hold_gain);
         self.learner.set_exploration_gain(gain);
