@@ -7,13 +7,10 @@
 //! weights new samples by a cost shrunk by `1 − a` and may move its controller further per
 //! M-step (trust region × `1 + a (s − 1)`). When the level falls back, `a` is released over
 //! `release_seconds`. Fields the arm does not visit forget nothing. Until a change has been
-//! detected, the training driver's disturbance observer feeds the level too
-//! ([`Learner::observe_offset`]); [`Learner::restore`] and [`Learner::cap_adaptation`] serve the
-//! driver's rollback (`train/rollback.rs`).
+//! detected, the training driver's disturbance observer feeds the level too, and the driver may
+//! roll the learner back (`readapt.rs`).
 
-use super::Learner;
 use crate::config::AdaptationConfig;
-use crate::error::{LearnError, Result};
 use serde::Serialize;
 
 /// The re-adaptation's state: the running level of the error ratio and the strength it gives.
@@ -105,62 +102,6 @@ impl AdaptationSignal {
     /// The factor on the RWR trust region.
     pub(crate) fn trust_scale(&self, cfg: &AdaptationConfig) -> f64 {
         1.0 + self.strength * (cfg.trust_scale - 1.0)
-    }
-}
-
-impl Learner {
-    /// The training driver's disturbance observer's slow estimate `‖d̄‖` (m/s²,
-    /// [`crate::Dob::offset`]; 0 when it stops): while the learner re-adapts and
-    /// `adaptation.offset_floor > 0`, `(‖d̄‖ / offset_floor)²` joins the error ratio of the next
-    /// checks (the larger of it and the fields' ratio counts). A non-finite value counts as 0.
-    pub fn observe_offset(&mut self, offset: f64) {
-        let a = &self.cfg.adaptation;
-        let on = a.enabled && a.offset_floor > 0.0 && offset.is_finite();
-        self.adapt.offset_ratio = if on {
-            (offset / a.offset_floor).powi(2)
-        } else {
-            0.0
-        };
-    }
-
-    /// Caps the re-adaptation's strength at `cap` (clamped to [0, 1]; NaN leaves it as it
-    /// is), from the next check of the prediction error on (`adaptation.rollback_damping`).
-    pub fn cap_adaptation(&mut self, cap: f64) {
-        if !cap.is_nan() {
-            self.adapt.cap = cap.clamp(0.0, 1.0);
-            self.adapt.strength = self.adapt.strength.min(self.adapt.cap);
-        }
-    }
-
-    /// Goes back to `checkpoint` (a clone of this learner taken earlier): its models, its
-    /// controllers, its load correction and its re-adaptation's level, strength and whether
-    /// it had detected a change — and its config and flags, which the training driver leaves
-    /// as they were. Kept from this learner: the counters ([`Self::stats`], whose sample count
-    /// is the learner's clock), the re-adaptation's peak level and counts (they count what
-    /// happened on the robot) and the preallocated scratch buffers.
-    ///
-    /// # Errors
-    /// [`LearnError::InvalidConfig`] if `checkpoint` is for other dimensions; nothing changes.
-    pub fn restore(&mut self, checkpoint: &Learner) -> Result<()> {
-        if checkpoint.dims() != self.dims() || checkpoint.dt != self.dt {
-            return Err(LearnError::InvalidConfig(format!(
-                "a checkpoint for {:?} joints and task at dt {} cannot restore a learner for {:?} \
-                 at {}",
-                checkpoint.dims(),
-                checkpoint.dt,
-                self.dims(),
-                self.dt
-            )));
-        }
-        let (stats, signal) = (self.stats, self.adapt);
-        let ws = std::mem::replace(&mut self.ws, checkpoint.ws.clone());
-        self.clone_from(checkpoint);
-        self.ws = ws;
-        self.stats = stats;
-        self.adapt.peak_level = signal.peak_level.max(self.adapt.peak_level);
-        self.adapt.checks = signal.checks;
-        self.adapt.adapting_steps = signal.adapting_steps;
-        Ok(())
     }
 }
 

@@ -42,6 +42,7 @@ mod models;
 mod nominal;
 mod null_space;
 mod projection;
+mod readapt;
 mod state;
 mod stats;
 

@@ -4,6 +4,7 @@
 
 use super::curriculum::EpisodePath;
 use super::observer::{EpisodeOutcome, EpisodeRecord, EpisodeReport, Phase};
+use super::rollback::Rollback;
 use super::Trainer;
 use crate::dob::observed_reference;
 use crate::error::Result;
@@ -29,7 +30,7 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
         if hold_first {
             self.hold_command()?;
         }
-        self.rollback_start();
+        self.rollback = Rollback::start(self.learner, continuation);
         while !self.done() {
             let away = std::mem::take(&mut hold_first) || self.away_from_home();
             if away && !self.return_home()? {
@@ -82,7 +83,7 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
             _ => EpisodeOutcome::Completed,
         };
         let failed = report.aborted || report.braked;
-        let rolled_back = self.rollback_after_episode(failed)?;
+        let rolled_back = self.rollback.after_episode(self.learner, failed)?;
         self.episode_log.push(EpisodeRecord {
             start_minute,
             stage: stage_index,

@@ -3,16 +3,14 @@
 //! continuation with `adaptation.enabled`: `osrl adapt`, E8), the driver keeps a copy of it from
 //! the end of the last on-policy episode that completed (at first: from the start of the
 //! on-policy phase). A run that babbles first (`osrl train --change-at`) never rolls back: its
-//! early episodes fail while it learns, and a copy from the babbling would undo that. After
-//! `adaptation.rollback_after` episodes in a row that braked or aborted, it restores that copy
-//! (the learner's counters kept) and caps the re-adaptation's strength at
+//! early episodes fail while it learns, and a copy from the babbling would undo that.
+//! After `adaptation.rollback_after` episodes in a row that braked or aborted, it restores that
+//! copy (the learner's counters kept) and caps the re-adaptation's strength at
 //! `adaptation.rollback_damping` times its cap before, so the learning that broke the command
 //! does not repeat itself at the same strength.
 
-use super::Trainer;
 use crate::error::Result;
 use crate::Learner;
-use osrl_dynamics::Robot;
 
 /// The driver's rollback state.
 #[derive(Default)]
@@ -26,45 +24,44 @@ pub(super) struct Rollback {
     cap: f64,
 }
 
-impl<R: Robot + ?Sized> Trainer<'_, R> {
-    /// At the start of the on-policy phase: the first checkpoint, if this run continues a
-    /// trained learner that re-adapts, and rollbacks are on.
-    pub(super) fn rollback_start(&mut self) {
-        let ad = &self.learner.config().adaptation;
-        let on = self.continuation && ad.enabled && ad.rollback_after > 0;
-        self.rollback = Rollback {
-            checkpoint: on.then(|| self.learner.clone()),
-            cap: self.learner.adaptation().cap,
-            ..Rollback::default()
-        };
+impl Rollback {
+    /// At the start of the on-policy phase: the first checkpoint, if `continuation` (the run
+    /// did not babble) and `learner` re-adapts with rollbacks on.
+    pub(super) fn start(learner: &Learner, continuation: bool) -> Self {
+        let ad = &learner.config().adaptation;
+        let on = continuation && ad.enabled && ad.rollback_after > 0;
+        Self {
+            checkpoint: on.then(|| learner.clone()),
+            cap: learner.adaptation().cap,
+            ..Self::default()
+        }
     }
 
-    /// After an episode (`failed`: braked or aborted): a new checkpoint, or a rollback to the
-    /// last one; returns whether it rolled back.
+    /// After an episode (`failed`: braked or aborted): a new checkpoint of `learner`, or a
+    /// rollback of it to the last one; returns whether it rolled back.
     ///
     /// # Errors
     /// None in practice (the checkpoint is a copy of the same learner).
-    pub(super) fn rollback_after_episode(&mut self, failed: bool) -> Result<bool> {
-        let ad = &self.learner.config().adaptation;
+    pub(super) fn after_episode(&mut self, learner: &mut Learner, failed: bool) -> Result<bool> {
+        let ad = &learner.config().adaptation;
         let (after, damping) = (ad.rollback_after, ad.rollback_damping);
-        let rb = &mut self.rollback;
-        let Some(checkpoint) = rb.checkpoint.as_mut() else {
+        let Some(checkpoint) = self.checkpoint.as_mut() else {
             return Ok(false);
         };
         if !failed {
-            rb.failed_in_row = 0;
-            checkpoint.clone_from(&*self.learner);
+            self.failed_in_row = 0;
+            checkpoint.clone_from(learner);
             return Ok(false);
         }
-        rb.failed_in_row += 1;
-        if rb.failed_in_row < after {
+        self.failed_in_row += 1;
+        if self.failed_in_row < after {
             return Ok(false);
         }
-        rb.failed_in_row = 0;
-        rb.count += 1;
-        rb.cap *= damping;
-        self.learner.restore(checkpoint)?;
-        self.learner.cap_adaptation(rb.cap);
+        self.failed_in_row = 0;
+        self.count += 1;
+        self.cap *= damping;
+        learner.restore(checkpoint)?;
+        learner.cap_adaptation(self.cap);
         Ok(true)
     }
 }
