@@ -4,10 +4,9 @@
 
 use super::babble::pd_command;
 use crate::learner::fixture;
-use crate::train::{BabbleConfig, OnEvaluation, TrainConfig, Trainer};
+use crate::train::{BabbleConfig, TrainConfig};
 use crate::Learner;
-use osrl_control::TrajectoryConfig;
-use osrl_dynamics::{robots, Measurement, Robot, SimRobot};
+use osrl_dynamics::{Measurement, Robot, SimRobot};
 
 /// A simulated robot that records the commands it is sent.
 struct Recording {
@@ -42,8 +41,6 @@ impl Robot for Recording {
 
 /// A continuation of `seconds` (no babbling) on planar3 with `cfg`'s other settings.
 fn continue_for(robot: &mut Recording, learner: &mut Learner, seconds: f64, cfg: TrainConfig) {
-    let model = robots::planar3();
-    let traj = TrajectoryConfig::default().build(&model).unwrap();
     let cfg = TrainConfig {
         minutes: seconds / 60.0,
         eval_every_minutes: 0.0,
@@ -53,13 +50,7 @@ fn continue_for(robot: &mut Recording, learner: &mut Learner, seconds: f64, cfg:
         },
         ..cfg
     };
-    let axes = model.task_axes().to_vec();
-    let mut evaluate = |_: &mut Learner| Ok(Default::default());
-    let mut obs = OnEvaluation(|_: &crate::train::Progress| {});
-    Trainer::new(robot, learner, &traj, &axes, &cfg, &mut evaluate, &mut obs)
-        .unwrap()
-        .run()
-        .unwrap();
+    fixture::train_planar3(robot, learner, &cfg);
 }
 
 /// The fixture's robot, recording.

@@ -5,10 +5,8 @@
 
 use crate::config::AdaptationConfig;
 use crate::learner::fixture;
-use crate::train::{OnEvaluation, Progress, TrainConfig, Trainer};
+use crate::train::TrainConfig;
 use crate::Learner;
-use osrl_control::TrajectoryConfig;
-use osrl_dynamics::robots;
 
 /// The learner's bytes with `stats` counters (the saved form includes them).
 fn bytes_with_counters(l: &Learner, stats: crate::LearnerStats) -> Vec<u8> {
@@ -72,8 +70,6 @@ fn failing_run(
             ..AdaptationConfig::default()
         })
         .unwrap();
-    let model = robots::planar3();
-    let traj = TrajectoryConfig::default().build(&model).unwrap();
     let cfg = TrainConfig {
         reset_error: 1e-9,
         learn_returning_home: false,
@@ -83,22 +79,7 @@ fn failing_run(
         },
         ..fixture::short_training(0.3)
     };
-    let axes = model.task_axes().to_vec();
-    let mut evaluate = |_: &mut Learner| Ok(Default::default());
-    let mut obs = OnEvaluation(|_: &Progress| {});
-    let mut sim = fixture::robot();
-    let summary = Trainer::new(
-        &mut sim,
-        &mut learner,
-        &traj,
-        &axes,
-        &cfg,
-        &mut evaluate,
-        &mut obs,
-    )
-    .unwrap()
-    .run()
-    .unwrap();
+    let summary = fixture::train_planar3(&mut fixture::robot(), &mut learner, &cfg);
     (summary, learner)
 }
 
