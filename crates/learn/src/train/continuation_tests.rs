@@ -50,7 +50,7 @@ fn continue_for(robot: &mut Recording, learner: &mut Learner, seconds: f64, cfg:
         },
         ..cfg
     };
-    fixture::train_planar3(robot, learner, &cfg);
+    super::run_fixture::train_planar3(robot, learner, &cfg);
 }
 
 /// The fixture's robot, recording.

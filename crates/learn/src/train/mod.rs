@@ -24,6 +24,8 @@ mod postures_tests;
 mod rollback;
 #[cfg(test)]
 mod rollback_tests;
+#[cfg(test)]
+pub(crate) mod run_fixture;
 mod safety;
 #[cfg(test)]
 mod step_limit_tests;

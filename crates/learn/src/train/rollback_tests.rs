@@ -79,7 +79,7 @@ fn failing_run(
         },
         ..fixture::short_training(0.3)
     };
-    let summary = fixture::train_planar3(&mut fixture::robot(), &mut learner, &cfg);
+    let summary = super::run_fixture::train_planar3(&mut fixture::robot(), &mut learner, &cfg);
     (summary, learner)
 }
 
