@@ -49,6 +49,21 @@ impl Adapted {
         }
         self.summary.minutes_to(pred)
     }
+
+    /// The first simulated minute from which the learning curve meets `pred` at every later
+    /// evaluation (0 if the learner met it before any learning and never failed it; `None` if
+    /// the last evaluation does not).
+    pub fn minutes_to_stay(&self, pred: impl Fn(&EvalResult) -> bool) -> Option<f64> {
+        let all = self
+            .summary
+            .learning_curve
+            .iter()
+            .all(|(_, e)| !e.diverged && pred(e));
+        if all && !self.before.diverged && pred(&self.before) {
+            return Some(0.0);
+        }
+        self.summary.minutes_to_stay(pred)
+    }
 }
 
 /// The checked change for `setup`'s robot: in range, and an arm that can still hold itself

@@ -69,6 +69,12 @@ pub struct ChangeRow {
     /// Re-adapting: first evaluation after the change at ≤ 1 mm, at ≤ 2× nominal.
     pub minutes_to_1mm: Option<f64>,
     pub minutes_to_2x_nominal: Option<f64>,
+    /// The same, from when every later evaluation of the change stays within the bound (a
+    /// relapse counts; `null` if the last one does not).
+    #[serde(default)]
+    pub minutes_to_1mm_stable: Option<f64>,
+    #[serde(default)]
+    pub minutes_to_2x_nominal_stable: Option<f64>,
     /// Re-adapting: the last evaluation with the change, its tracking and command nMSE
     /// against eq. 7 on the changed true model.
     pub adapted_tracking_rms_mm: Option<f64>,
@@ -181,6 +187,22 @@ fn first(
         .map(|(t, _)| t - from)
 }
 
+/// Minutes after `from` of the first point of `curve` in `(from, to]` from which every point
+/// up to `to` is a number meeting `pred` (`None` if the last one is not): a relapse after a
+/// first success counts.
+fn stays(
+    curve: &[(f64, Option<f64>)],
+    from: f64,
+    to: f64,
+    pred: &dyn Fn(f64) -> bool,
+) -> Option<f64> {
+    let window: Vec<&(f64, Option<f64>)> = (curve.iter())
+        .filter(|(t, _)| *t > from && *t <= to + 1e-9)
+        .collect();
+    let bad = window.iter().rposition(|(_, v)| !v.is_some_and(pred));
+    window.get(bad.map_or(0, |i| i + 1)).map(|(t, _)| t - from)
+}
+
 /// Runs one E8 timeline: `learner` (trained on `setup`'s unchanged robot with `setup`'s
 /// training gains; `setup`'s training seed, evaluation periods) under the change `key`.
 ///
@@ -271,6 +293,8 @@ pub fn run(setup: &Setup, learner: &Learner, key: &str, sizes: &Sizes) -> Result
         eq7_stale_tracking_rms_mm: eq7_stale,
         minutes_to_1mm: first(&points, at, until, &|v| v <= 1.0),
         minutes_to_2x_nominal: first(&points, at, until, &|v| v <= two_x),
+        minutes_to_1mm_stable: stays(&points, at, until, &|v| v <= 1.0),
+        minutes_to_2x_nominal_stable: stays(&points, at, until, &|v| v <= two_x),
         adapted_tracking_rms_mm: last_changed.and_then(|(_, e)| mm(e)),
         adapted_command_nmse: last_changed
             .filter(|(_, e)| !e.diverged)
@@ -364,6 +388,27 @@ mod tests {
         // The point at the change itself belongs to the time before it.
         assert_eq!(first(&c, 0.0, 1.25, &|v| v <= 1.0), Some(0.5));
         assert_eq!(first(&c, 0.5, 1.0, &|v| v <= 1.0), None);
+    }
+
+    /// "For good" is the first point after the last one that misses the bound (a diverged one
+    /// misses it), within the window; `None` when the window ends outside the bound.
+    #[test]
+    fn recovery_for_good_counts_a_relapse() {
+        let c = [
+            (0.0, Some(0.1)),
+            (0.25, Some(0.5)),
+            (0.5, None),
+            (0.75, Some(0.4)),
+            (1.0, Some(3.0)),
+            (1.25, Some(0.5)),
+            (1.5, Some(0.6)),
+        ];
+        let ok = |v: f64| v <= 1.0;
+        assert_eq!(first(&c, 0.0, 1.5, &ok), Some(0.25));
+        assert_eq!(stays(&c, 0.0, 1.5, &ok), Some(1.25));
+        assert_eq!(stays(&c, 0.0, 1.0, &ok), None);
+        assert_eq!(stays(&c, 1.0, 1.5, &ok), Some(0.25));
+        assert_eq!(stays(&c, 0.0, 0.25, &ok), Some(0.25));
     }
 
     /// A tiny timeline: the three lines have one point per evaluation, the frozen and eq. 7

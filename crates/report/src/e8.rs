@@ -42,8 +42,16 @@ pub(crate) fn table(r: &Results) -> String {
                     or_diverged(v.eq7_nominal_tracking_rms_mm),
                     or_diverged(v.eq7_stale_tracking_rms_mm)
                 ),
-                minutes(v.minutes_to_1mm),
-                minutes(v.minutes_to_2x_nominal),
+                format!(
+                    "{} / {}",
+                    minutes(v.minutes_to_1mm),
+                    minutes(v.minutes_to_1mm_stable)
+                ),
+                format!(
+                    "{} / {}",
+                    minutes(v.minutes_to_2x_nominal),
+                    minutes(v.minutes_to_2x_nominal_stable)
+                ),
                 format!(
                     "{} / {}",
                     or_diverged(v.adapted_tracking_rms_mm),
@@ -66,8 +74,8 @@ pub(crate) fn table(r: &Results) -> String {
         "frozen, changed [mm]",
         "frozen + observer, changed [mm]",
         "eq. 7 true / stale model [mm]",
-        "re-adapting: to ≤ 1 mm [min]",
-        "to ≤ 2× nominal [min]",
+        "re-adapting: to ≤ 1 mm, first / for good [min]",
+        "to ≤ 2× nominal, first / for good [min]",
         "at the end of the change [mm] / nMSE",
         "after removal: to ≤ 1 mm [min]",
         "to ≤ 2× nominal [min]",

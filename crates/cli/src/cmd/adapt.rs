@@ -11,7 +11,9 @@
 //! learning; `null` with the observer off), `tracking_rms_mm_nominal`,
 //! `tracking_rms_mm_nominal_observer` (with the observer, on the unchanged robot),
 //! `minutes_to_1mm`, `minutes_to_2x_nominal`, `minutes_to_2x_nominal_observer` (to within twice
-//! the nominal with the observer) and the learning curve from minute 0.
+//! the nominal with the observer), `minutes_to_1mm_stable` and `minutes_to_2x_nominal_stable`
+//! (from when every later evaluation stays within the bound: a relapse counts) and the learning
+//! curve from minute 0.
 //!
 //! The config file's `[train]` section sets the run (its gains are replaced by the saved
 //! controller's, its babbling is skipped, evaluations come at least every 0.25 minutes) and
@@ -190,6 +192,9 @@ fn adapt_json(r: &Adapted, change: &RobotChange, robot: &str) -> Result<serde_js
         "minutes_to_2x_nominal_observer": nominal_observer
             .and_then(|n| r.minutes_to(|e| e.tracking_rms_mm <= 2.0 * n)),
         "minutes_to_nmse_0.05": r.minutes_to(|e| e.command_nmse <= 0.05),
+        "minutes_to_1mm_stable": r.minutes_to_stay(|e| e.tracking_rms_mm <= 1.0),
+        "minutes_to_2x_nominal_stable": r
+            .minutes_to_stay(|e| e.tracking_rms_mm <= 2.0 * nominal),
         "adaptation_peak_level": r.peak_level,
         "adapting_steps": r.adapting_steps,
         "adaptation_curve": r

@@ -91,6 +91,16 @@ impl TrainSummary {
             .map(|(t, _)| *t)
     }
 
+    /// The simulated minute from which every evaluation on (it included) did not diverge and
+    /// meets `pred` (`None` if the last one does not): unlike [`Self::minutes_to`], a relapse
+    /// after a first success counts.
+    pub fn minutes_to_stay(&self, pred: impl Fn(&EvalResult) -> bool) -> Option<f64> {
+        let ok = |e: &EvalResult| !e.diverged && pred(e);
+        let bad = self.learning_curve.iter().rposition(|(_, e)| !ok(e));
+        let from = bad.map_or(0, |i| i + 1);
+        self.learning_curve.get(from).map(|(t, _)| *t)
+    }
+
     /// Commands held to the torque-rate limit, by the learner or by the driver, or to the
     /// on-policy step limit (`TrainConfig::command_step_limit`).
     pub fn rate_limited(&self) -> u64 {
@@ -541,6 +551,23 @@ mod tests {
         assert!(summary.episode_log[0].start_minute >= 0.4 - 1e-9);
         assert_eq!(log.episodes, summary.episodes);
         assert_eq!(summary.learning_curve.len(), 5);
+        // The fixture's evaluations are all the default (0 mm, not diverged): met from the
+        // first one on; a predicate the last one misses is never met for good.
+        let first = summary.learning_curve[0].0;
+        assert_eq!(summary.minutes_to_stay(|_| true), Some(first));
+        assert_eq!(summary.minutes_to_stay(|_| false), None);
+        let mut relapse = summary.clone();
+        let diverged = crate::eval::EvalResult {
+            diverged: true,
+            ..Default::default()
+        };
+        relapse.learning_curve = vec![
+            (0.25, Default::default()),
+            (0.5, diverged),
+            (0.75, Default::default()),
+        ];
+        assert_eq!(relapse.minutes_to(|_| true), Some(0.25));
+        assert_eq!(relapse.minutes_to_stay(|_| true), Some(0.75));
         // The learner's ĝ is frozen once on-policy learning starts.
         assert!(learner.gravity_frozen());
     }
