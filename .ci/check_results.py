@@ -9,7 +9,8 @@ r = json.loads((out / "results.json").read_text())
 errors = []
 
 # Measured "never" outcomes: the first minute at which a target was met, null if it never was.
-NULLABLE = ("minutes_to_1mm", "minutes_to_nmse_0_05", "minutes_to_2x_nominal")
+NULLABLE = ("minutes_to_1mm", "minutes_to_nmse_0_05", "minutes_to_2x_nominal",
+            "minutes_to_1mm_stable", "minutes_to_2x_nominal_stable")
 # E8's timelines: null marks an evaluation that diverged (drawn as a gap).
 TIMELINE = ("adapting_mm", "frozen_mm", "eq7_stale_mm")
 
@@ -75,7 +76,7 @@ for robot in ["planar3", "sarcos7"]:
             continue
         for k in ["nominal_tracking_rms_mm", "frozen_tracking_rms_mm", "eq7_stale_tracking_rms_mm",
                   "adapted_tracking_rms_mm", "minutes_to_1mm", "minutes_to_2x_nominal",
-                  "aborted_episodes", "max_command_step", "diverged", "timeline"]:
+                  "minutes_to_1mm_stable", "minutes_to_2x_nominal_stable", "aborted_episodes", "max_command_step", "diverged", "timeline"]:
             if k not in row:
                 errors.append(f"E8.{robot}.{change}: no {k}")
         tl = row.get("timeline", {})
