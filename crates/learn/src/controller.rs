@@ -32,7 +32,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-use crate::dob::observed_reference;
+use crate::dob::{observed_reference, Dob};
 use crate::error::{LearnError, Result};
 use crate::learner::{CommandSource, Learner};
 use osrl_control::{ControlError, Target, TaskController, TaskGains};
@@ -130,6 +130,28 @@ impl LearnedController {
     }
 }
 
+/// The learned command without exploration for `target` at `meas` (`u`, eq. 34's blend) on the
+/// reference of [`observed_reference`](crate::dob::observed_reference) (the observer learning from `meas`): what
+/// `LearnedController` and the evaluation send. Returns the command's source.
+///
+/// # Errors
+/// The learner's error (bad measurement, wrong sizes).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn observed_command(
+    learner: &mut Learner,
+    gains: &TaskGains,
+    target: &Target,
+    axes: &[usize],
+    meas: &Measurement,
+    dob: &mut Dob,
+    xdd_ref: &mut [f64],
+    u: &mut [f64],
+) -> Result<CommandSource> {
+    observed_reference(gains, target, axes, meas, dob, true, xdd_ref);
+    let (q, qd) = (meas.q.as_slice(), meas.qd.as_slice());
+    learner.command::<rand_chacha::ChaCha8Rng>(q, qd, xdd_ref, None, u)
+}
+
 impl TaskController for LearnedController {
     fn command(
         &mut self,
@@ -137,21 +159,14 @@ impl TaskController for LearnedController {
         target: &Target,
         u: &mut [f64],
     ) -> osrl_control::Result<()> {
-        let (gains, axes) = (&self.gains, &self.axes);
-        observed_reference(
-            gains,
+        let src = observed_command(
+            &mut self.learner,
+            &self.gains,
             target,
-            axes,
+            &self.axes,
             meas,
             &mut self.dob,
-            true,
             &mut self.xdd_ref,
-        );
-        let src = self.learner.command::<rand_chacha::ChaCha8Rng>(
-            meas.q.as_slice(),
-            meas.qd.as_slice(),
-            &self.xdd_ref,
-            None,
             u,
         )?;
         match src {

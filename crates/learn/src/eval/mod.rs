@@ -9,7 +9,7 @@ mod result;
 mod true_gain;
 mod window;
 
-use crate::dob::observed_reference;
+use crate::controller::observed_command;
 use crate::error::{LearnError, Result};
 use crate::learner::{CommandSource, Learner};
 use osrl_control::{
@@ -160,22 +160,18 @@ impl TaskController for EvalController<'_> {
         target: &Target,
         u: &mut [f64],
     ) -> osrl_control::Result<()> {
-        let (gains, axes) = (&self.gains, &self.axes);
-        observed_reference(
-            gains,
+        let clock = std::time::Instant::now();
+        self.source = observed_command(
+            self.learner,
+            &self.gains,
             target,
-            axes,
+            &self.axes,
             meas,
             &mut self.dob,
-            true,
             &mut self.xdd_ref,
-        );
-        let clock = std::time::Instant::now();
-        let (q, qd) = (meas.q.as_slice(), meas.qd.as_slice());
-        self.source = self
-            .learner
-            .command::<rand_chacha::ChaCha8Rng>(q, qd, &self.xdd_ref, None, u)
-            .map_err(|e| keep(&mut self.error, e))?;
+            u,
+        )
+        .map_err(|e| keep(&mut self.error, e))?;
         self.seconds = clock.elapsed().as_secs_f64();
         Ok(())
     }
