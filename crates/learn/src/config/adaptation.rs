@@ -111,6 +111,10 @@ pub struct AdaptationConfig {
     /// undetected. Default 1: on the unchanged arms `‖d̄‖` stays below about 1.4 (planar3) and
     /// 0.7 (sarcos7), so the ratio stays below `on_ratio` (D35).
     pub offset_floor: f64,
+    /// While re-adapting, the command's null-space correction (`gravity.null_correction`) is
+    /// on, learned from the holds at path postures of the run (`[train.posture_holds]`), so a
+    /// controller trained without it learns one for the changed robot. Default false.
+    pub null_correction: bool,
 }
 
 /// Which prediction error the re-adaptation's level is made of (`docs/learner.md`,
@@ -157,6 +161,7 @@ impl Default for AdaptationConfig {
             rollback_damping: 0.5,
             max_strength: 1.0,
             offset_floor: 1.0,
+            null_correction: false,
         }
     }
 }

@@ -65,6 +65,23 @@ pub struct GravityConfig {
     /// decides wherever it has a field within about 3 kernel widths; the dynamic one takes
     /// over where the static model's support is a hundred times weaker.
     pub dynamic_weight: f64,
+    /// A correction of `u0` in the null space of `Â` (`learner/null_gravity.rs`): a third
+    /// LWPR model on `q` learns, from the still samples of the holds at path postures
+    /// (`TrainConfig::posture_holds`, which then teach it instead of the static model), what `ĝ`
+    /// and the load correction miss there, and the command adds its part in the null space of
+    /// the blended `Â`. Default true. Why: the null-space part of `û0`'s error is what
+    /// task-space measurements never teach (most of sarcos7's command error, D25), and a change
+    /// of `ĝ` in the task directions would move the task acceleration under the trained
+    /// controllers.
+    pub null_correction: bool,
+    /// Support `S0` of the correction's fade `S / (S + S0)`, `S` its model's total activation at
+    /// `q` (> 0). Default 0.1: a field about two kernel widths away adds a tenth of its value,
+    /// so a new field enters the command gradually.
+    pub null_support: f64,
+    /// The correction's ridge: its fields' `init_s2` (LWPR's initial `SSs2` of a projection) at
+    /// least this (≥ 0). Default 0.1: a field fitted at one posture has no information on its
+    /// slopes, and the ridge keeps them near 0 until its samples spread.
+    pub null_ridge: f64,
 }
 
 /// The partition: the forward model `ẍ = f(q, q̇, u)` (eqs. 32–33) whose receptive fields carry
@@ -312,6 +329,9 @@ impl Default for GravityConfig {
             static_on_policy: true,
             continuous: true,
             dynamic_weight: 0.01,
+            null_correction: true,
+            null_support: 0.1,
+            null_ridge: 0.1,
         }
     }
 }

@@ -71,6 +71,16 @@ impl LearnerConfig {
         ensure(finite_at_least(w, 0.0), || {
             format!("gravity.dynamic_weight {w} must be finite and ≥ 0")
         })?;
+        let g = &self.gravity;
+        ensure(g.null_support > 0.0 && g.null_support.is_finite(), || {
+            format!(
+                "gravity.null_support {} must be finite and > 0",
+                g.null_support
+            )
+        })?;
+        ensure(finite_at_least(g.null_ridge, 0.0), || {
+            format!("gravity.null_ridge {} must be finite and ≥ 0", g.null_ridge)
+        })?;
         let d = &self.dynamics;
         ensure(d.forgetting > 0.0 && d.forgetting <= 1.0, || {
             format!("dynamics.forgetting {} must be in (0, 1]", d.forgetting)

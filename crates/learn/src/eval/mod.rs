@@ -277,7 +277,7 @@ struct Split {
 impl Comparison<'_> {
     /// The error split of the learned command `u` at `(q, q̇)` (after [`Comparison::optimum`]).
     fn split(&mut self, learner: &mut Learner, q: &[f64], qd: &[f64], u: &[f64]) -> Result<Split> {
-        learner.nominal(q, qd, &mut self.u0_hat)?;
+        learner.nominal_in_command(q, qd, &mut self.u0_hat)?;
         let truth = TrueGain::new(self.osc.data(), &self.axes);
         let null2 = truth
             .as_ref()

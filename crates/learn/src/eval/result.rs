@@ -17,7 +17,8 @@ pub struct EvalResult {
     /// u*)‖²`, same normalisation): the redundancy resolution's share of the error.
     #[serde(default)]
     pub command_nmse_null: f64,
-    /// The learned nominal behaviour's error, `‖û0 − u0‖²` (learned `ĝ` vs true `g`), with the
+    /// The learned nominal behaviour's error, `‖û0 − u0‖²` (`û0` as the command adds it: learned
+    /// `ĝ`, the load correction and the null-space correction, against the true `g`), with the
     /// same normalisation: a floor of `command_nmse` set by the gravity model.
     #[serde(default)]
     pub nominal_nmse: f64,

@@ -4,6 +4,7 @@
 
 use super::exploration::explore;
 use super::nominal::nominal_into;
+use super::null_gravity::null_correction_into_z;
 use super::{Learner, State};
 use crate::error::{LearnError, Result};
 use crate::local::blend_weight;
@@ -164,6 +165,7 @@ impl Learner {
             for (v, o) in u.iter_mut().zip(u0.iter()) {
                 *v += o;
             }
+            self.add_null_correction(q, u)?;
         }
         if let (Some(rng), State::Ready(models)) = (rng, &self.state) {
             explore(
@@ -179,6 +181,31 @@ impl Learner {
             );
         }
         Ok(blend.source)
+    }
+
+    /// The null-space correction (`null_gravity.rs`) under the `Â` of the command's blend
+    /// (active fields in `ws.acts`), added to `u`; nothing without it or without an `Â`.
+    fn add_null_correction(&mut self, q: &[f64], u: &mut [f64]) -> Result<()> {
+        let State::Ready(models) = &mut self.state else {
+            return Ok(());
+        };
+        if !self.cfg.gravity.null_correction || models.gravity_null.is_none() {
+            return Ok(());
+        }
+        let ws = &mut self.ws;
+        let weights = (
+            self.cfg.partition.activation_cutoff,
+            self.cfg.controllers.trained_ess,
+        );
+        if !models.command_gain(&self.features, &ws.acts, q, weights, &mut ws.a_hat) {
+            return Ok(());
+        }
+        if null_correction_into_z(&self.cfg, models, ws, q)? {
+            for (v, z) in u.iter_mut().zip(&ws.z) {
+                *v += z;
+            }
+        }
+        Ok(())
     }
 
     /// The nominal `u0` as the command where no trained controller is near (counted).

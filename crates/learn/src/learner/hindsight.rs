@@ -6,6 +6,7 @@
 
 use super::cost::{cost, shrink_target};
 use super::nominal::nominal_into;
+use super::null_gravity::null_correction_into_z;
 use super::stats::{LearnerStats, Scratch};
 use super::{AdaptationSignal, LoadCorrection};
 use super::{Features, Learner, Models, State};
@@ -72,6 +73,9 @@ impl Learner {
         if let Err(e) = self.check(cur).and_then(|_| self.check(prev)) {
             self.stats.rejected += 1;
             return Err(e);
+        }
+        if self.cfg.gravity.null_correction {
+            return self.learn_null_gravity(prev, cur);
         }
         match self.step() {
             Some(mut step) => step.learn_static(prev, cur, false),
@@ -253,11 +257,17 @@ impl Step<'_> {
                 *o += c;
             }
         }
+        let known = models.blended_gain(self.features, &ws.acts, q, &mut ws.a_hat);
+        // The command's null-space correction is part of its `u0` (`null_gravity.rs`).
+        if known && residual && null_correction_into_z(self.cfg, models, ws, q)? {
+            for (o, z) in ws.u0.iter_mut().zip(&ws.z) {
+                *o += z;
+            }
+        }
         for (i, &ui) in u.iter().enumerate() {
             ws.du[i] = ui - ws.u0[i];
             ws.target[i] = if residual { ws.du[i] } else { ui };
         }
-        let known = models.blended_gain(self.features, &ws.acts, q, &mut ws.a_hat);
         if known && residual {
             let kappa = self.cfg.controllers.null_space_shrink;
             shrink_target(kappa, models.metric.as_ref(), ws);

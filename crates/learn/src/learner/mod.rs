@@ -15,6 +15,7 @@
 //! | `inertia.rs` | the joints' inverse inertia measured in the warm-up; the velocity gain bounds |
 //! | `adapt.rs` | re-adaptation when the local dynamics stop predicting |
 //! | `load.rs` | the load correction of `u0` while re-adapting |
+//! | `null_gravity.rs` | the correction of `u0` in the null space of `Â`, from the holds |
 
 mod adapt;
 #[cfg(test)]
@@ -40,6 +41,7 @@ mod metric;
 mod metric_tests;
 mod models;
 mod nominal;
+mod null_gravity;
 mod null_space;
 mod projection;
 mod readapt;

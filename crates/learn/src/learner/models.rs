@@ -16,6 +16,9 @@ pub(crate) struct Models {
     pub gravity: GravityModel,
     /// The static gravity model (`gravity.static_gate`), used for `u0` once `ĝ` is frozen.
     pub gravity_static: Option<GravityModel>,
+    /// The null-space correction's model (`gravity.null_correction`, `null_gravity.rs`): made
+    /// at its first sample, so a controller trained without it can learn one later.
+    pub gravity_null: Option<GravityModel>,
     pub forward: ForwardModel,
     pub locals: LocalControllers,
     /// Standard deviation of each joint's torque during the warm-up (N·m).
@@ -110,6 +113,7 @@ impl Models {
             velocity_gain_hi,
             gravity,
             gravity_static,
+            gravity_null: None,
             forward,
             locals: LocalControllers::default(),
             g_static: vec![0.0; n],
@@ -121,7 +125,10 @@ impl Models {
     pub fn restore_buffers(&mut self) {
         self.g_static = vec![0.0; self.torque_scale.len()];
         self.gravity.restore_buffers();
-        if let Some(g) = self.gravity_static.as_mut() {
+        for g in [self.gravity_static.as_mut(), self.gravity_null.as_mut()]
+            .into_iter()
+            .flatten()
+        {
             g.restore_buffers();
         }
         self.forward.restore_buffers();
@@ -133,10 +140,13 @@ impl Models {
     /// # Errors
     /// [`crate::LearnError::Load`] naming what is inconsistent.
     pub fn check_loaded(&self) -> Result<()> {
-        match &self.gravity_static {
-            Some(g) => g.check_loaded(),
-            None => Ok(()),
+        for g in [self.gravity_static.as_ref(), self.gravity_null.as_ref()]
+            .into_iter()
+            .flatten()
+        {
+            g.check_loaded()?;
         }
+        Ok(())
     }
 
     /// `Â = Σ w_i Â_i(q) / Σ w_i` (m×n row-major into `a`) over the activations `acts` of fields

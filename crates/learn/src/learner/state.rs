@@ -127,6 +127,9 @@ impl Learner {
     /// A setting out of range; nothing is changed.
     pub fn set_adaptation(&mut self, cfg: crate::config::AdaptationConfig) -> Result<()> {
         cfg.validate()?;
+        if cfg.enabled && cfg.null_correction {
+            self.cfg.gravity.null_correction = true;
+        }
         self.cfg.adaptation = cfg;
         Ok(())
     }

@@ -10,7 +10,9 @@ use std::collections::VecDeque;
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct PostureHolds {
-    /// Postures visited per return home (0: off). Default 0 (`docs/decisions.md`, D25).
+    /// Postures visited per return home (0: off). Default 3: with the learner's null-space
+    /// correction (`gravity.null_correction`) they are what it learns from (D36); about 4 s per
+    /// return home.
     pub count: usize,
     /// Minimum-jerk move to each posture (s). Default 0.8: the babbling's shortest moves are
     /// 0.6 s, and the postures lie within a few tenths of a radian of each other.
@@ -38,7 +40,7 @@ pub struct PostureHolds {
 impl Default for PostureHolds {
     fn default() -> Self {
         Self {
-            count: 0,
+            count: 3,
             move_seconds: 0.8,
             hold_seconds: 0.6,
             record_every: 1.0,

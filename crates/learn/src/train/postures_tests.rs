@@ -16,8 +16,9 @@ fn static_updates(learner: &mut Learner) -> u64 {
 }
 
 /// A short planar3 run from home with 3-s episodes (so the arm returns home often), the static
-/// model learning on-policy only in the posture holds; returns the summary and the learner.
-fn run(holds: usize) -> (super::TrainSummary, Learner) {
+/// model learning on-policy only in the posture holds, or with the null-space correction
+/// (`correction`) the correction in its place; returns the summary and the learner.
+fn run(holds: usize, correction: bool) -> (super::TrainSummary, Learner) {
     let model = robots::planar3();
     let traj = TrajectoryConfig::default().build(&model).unwrap();
     let mut sim = fixture::robot();
@@ -25,6 +26,7 @@ fn run(holds: usize) -> (super::TrainSummary, Learner) {
     sim.reset(&reach.q_start, &[0.0; 3]).unwrap();
     let mut lcfg = fixture::config();
     lcfg.gravity.static_on_policy = false;
+    lcfg.gravity.null_correction = correction;
     let mut learner = Learner::new(3, 2, 0.002, lcfg).unwrap();
     let cfg = TrainConfig {
         episode_seconds: 3.0,
@@ -43,8 +45,8 @@ fn run(holds: usize) -> (super::TrainSummary, Learner) {
 /// transitions are not learning steps of the other models (fewer of those in the same time).
 #[test]
 fn posture_holds_teach_the_static_gravity_model_only() {
-    let (off, mut l_off) = run(0);
-    let (on, mut l_on) = run(2);
+    let (off, mut l_off) = run(0, false);
+    let (on, mut l_on) = run(2, false);
     assert!(off.episodes >= 2 && on.episodes >= 2, "{off:?}\n{on:?}");
     let (u_off, u_on) = (static_updates(&mut l_off), static_updates(&mut l_on));
     assert!(
@@ -64,7 +66,9 @@ fn posture_holds_teach_the_static_gravity_model_only() {
 /// learning-step count and the forward model alone.
 #[test]
 fn learn_static_gravity_touches_only_the_static_model() {
-    let (mut learner, _, last) = fixture::ready(fixture::config(), 200, 50);
+    let mut cfg = fixture::config();
+    cfg.gravity.null_correction = false;
+    let (mut learner, _, last) = fixture::ready(cfg, 200, 50);
     let mut prev = last.clone();
     prev.qd.fill(0.0);
     let mut cur = prev.clone();
@@ -83,4 +87,23 @@ fn learn_static_gravity_touches_only_the_static_model() {
     cur.qd.fill(1.0);
     learner.learn_static_gravity(&prev, &cur).unwrap();
     assert_eq!(static_updates(&mut learner), before + 1);
+}
+
+/// With the null-space correction (the default), the holds teach the correction's model and
+/// leave the static model as a run without holds leaves it; the command then differs from the
+/// run without the correction only by the correction.
+#[test]
+fn with_the_correction_the_holds_teach_it_instead_of_the_static_model() {
+    let (off, mut l_off) = run(0, true);
+    let (on, mut l_on) = run(2, true);
+    assert!(off.episodes >= 2 && on.episodes >= 2, "{off:?}\n{on:?}");
+    assert_eq!(static_updates(&mut l_on), static_updates(&mut l_off));
+    let updates = |l: &mut Learner| {
+        fixture::models(l)
+            .gravity_null
+            .as_ref()
+            .map_or(0, |g| g.lwpr().n_updates())
+    };
+    assert_eq!(updates(&mut l_off), 0);
+    assert!(updates(&mut l_on) > 100, "{}", updates(&mut l_on));
 }

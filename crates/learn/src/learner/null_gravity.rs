@@ -1,0 +1,217 @@
+//! The null-space correction of `u0` (`gravity.null_correction`; `docs/learner.md`,
+//! "Null-space correction"): a model `r(q)` of what `ĝ` and the load correction `c` miss at the
+//! holds at path postures, `u − ĝ(q) − c(q)` from still samples (where `u = g(q)`), enters the
+//! command only through its part in the null space of the blended `Â`:
+//!
+//! ```text
+//! u ← u + (I − Â⁺Â) r(q) · S / (S + S0)
+//! ```
+//!
+//! with `S` the model's total activation at `q` and `S0 = gravity.null_support`, so a new field
+//! fades in. To first order `Â (I − Â⁺Â) = 0`: the task acceleration the trained controllers
+//! learned to produce does not move, where a change of `ĝ` itself would move it by `Â Δĝ`
+//! (`docs/decisions.md`, D25: holds that retrained `ĝ` made the tracking worse). The relabelling
+//! counts the correction as part of `u0`, so neither the local controllers nor the load
+//! correction learn it.
+
+use super::nominal::gravity_into;
+use super::stats::Scratch;
+use super::{Learner, Models};
+use crate::config::LearnerConfig;
+use crate::error::Result;
+use crate::gravity::GravityModel;
+use osrl_dynamics::Measurement;
+
+/// The faded correction at `q` into `ws.z`, projected with the `Â` in `ws.a_hat` (in the cost's
+/// metric); `false` (and `ws.z` unspecified) where there is none: the option off, no trustworthy
+/// field yet, or a singular `Â N⁻¹ Âᵀ`. Does not allocate.
+///
+/// # Errors
+/// A model failure (a non-finite prediction).
+pub(crate) fn null_correction_into_z(
+    cfg: &LearnerConfig,
+    models: &mut Models,
+    ws: &mut Scratch,
+    q: &[f64],
+) -> Result<bool> {
+    let Some(r) = models.gravity_null.as_mut() else {
+        return Ok(false);
+    };
+    if !cfg.gravity.null_correction {
+        return Ok(false);
+    }
+    let Some(ln_s) = r.predict_everywhere(q, &mut ws.z)? else {
+        return Ok(false);
+    };
+    // S / (S + S0) = 1 / (1 + S0 / S), from the logarithm (no overflow or underflow).
+    let fade = 1.0 / (1.0 + (cfg.gravity.null_support.ln() - ln_s).exp());
+    ws.z.iter_mut().for_each(|v| *v *= fade);
+    Ok(super::metric::project_scratch_z(models.metric.as_ref(), ws))
+}
+
+/// The correction's model for `n` joints: the static gravity model's kind (kernel and
+/// regression on `q`, still samples within the static gate's budget per posture) with the ridge
+/// `gravity.null_ridge` on its fields' slopes.
+fn new_model(cfg: &LearnerConfig, n: usize, torque_scale: &[f64]) -> Result<GravityModel> {
+    let mut lwpr = cfg.gravity.lwpr.clone();
+    lwpr.init_s2 = lwpr.init_s2.max(cfg.gravity.null_ridge);
+    // The kernel and the regression use `q` only: the acceleration scale is unused.
+    GravityModel::new_static(
+        n,
+        &lwpr,
+        cfg.gravity.static_gate.unwrap_or_default(),
+        cfg.partition.velocity_scale,
+        1.0,
+        torque_scale,
+    )
+}
+
+impl Learner {
+    /// `u0` as the command adds it, into `u0`: `ĝ` and the pull to rest ([`Learner::nominal`]),
+    /// the load correction `c`, and the null-space correction under the `Â` of the command's
+    /// blend at `(q, q̇)`. Returns whether `ĝ` had support. The evaluation's `nominal_nmse`.
+    ///
+    /// # Errors
+    /// A model failure; slices must have `n` entries.
+    pub fn nominal_in_command(&mut self, q: &[f64], qd: &[f64], u0: &mut [f64]) -> Result<bool> {
+        let known = self.nominal(q, qd, u0)?;
+        let super::State::Ready(models) = &mut self.state else {
+            return Ok(known);
+        };
+        let (cfg, ws) = (&self.cfg, &mut self.ws);
+        let cut = cfg.partition.activation_cutoff;
+        models.forward.activations(q, qd, cut, &mut ws.acts)?;
+        if cfg.experimental.residual {
+            self.load.add_into(&ws.acts, u0);
+        }
+        let weights = (cut, cfg.controllers.trained_ess);
+        if cfg.gravity.null_correction
+            && models.command_gain(&self.features, &ws.acts, q, weights, &mut ws.a_hat)
+            && null_correction_into_z(cfg, models, ws, q)?
+        {
+            for (o, z) in u0.iter_mut().zip(&ws.z) {
+                *o += z;
+            }
+        }
+        Ok(known)
+    }
+
+    /// The null-space correction learns the transition `prev → cur` (the static gate decides
+    /// whether it is still): the target `u − ĝ(q) − c(q)` at `cur`. The model is made at the
+    /// first call, so a controller trained without it can learn one.
+    ///
+    /// # Errors
+    /// A model failure; nothing before the models exist.
+    pub(super) fn learn_null_gravity(
+        &mut self,
+        prev: &Measurement,
+        cur: &Measurement,
+    ) -> Result<()> {
+        let dt = cur.t - prev.t;
+        let super::State::Ready(models) = &mut self.state else {
+            return Ok(());
+        };
+        if !(dt > 0.0) {
+            return Ok(());
+        }
+        let (n, cfg, ws) = (self.n, &self.cfg, &mut self.ws);
+        if models.gravity_null.is_none() {
+            models.gravity_null = Some(new_model(cfg, n, &models.torque_scale)?);
+        }
+        let (q, qd, u) = (cur.q.as_slice(), cur.qd.as_slice(), cur.u.as_slice());
+        gravity_into(
+            &cfg.gravity,
+            Some(models),
+            self.gravity_frozen,
+            q,
+            &mut ws.z,
+        )?;
+        ws.load_c.fill(0.0);
+        if !self.load.is_empty() && cfg.experimental.residual {
+            let cut = cfg.partition.activation_cutoff;
+            models.forward.activations(q, qd, cut, &mut ws.acts)?;
+            self.load.add_into(&ws.acts, &mut ws.load_c);
+        }
+        for (((p, ui), g), c) in ws.pi.iter_mut().zip(u).zip(&ws.z).zip(&ws.load_c) {
+            *p = ui - g - c;
+        }
+        let r = models.gravity_null.as_mut().expect("made above");
+        r.learn(prev.q.as_slice(), prev.qd.as_slice(), q, qd, &ws.pi, dt)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::learner::fixture;
+    use crate::Learner;
+    use rand_chacha::ChaCha8Rng;
+
+    /// The command (no exploration) at `q` with `q̇ = 0`, and the `Â` of its blend.
+    fn command_and_gain(learner: &mut Learner, q: &[f64]) -> ([f64; 3], [f64; 6]) {
+        let (mut u, mut a, qd) = ([0.0; 3], [0.0; 6], [0.0; 3]);
+        learner.start_episode(None);
+        learner
+            .command::<ChaCha8Rng>(q, &qd, &[0.3, -0.2], None, &mut u)
+            .unwrap();
+        let cut = learner.cfg.partition.activation_cutoff;
+        let weights = (cut, learner.cfg.controllers.trained_ess);
+        let features = learner.features;
+        let models = fixture::models(learner);
+        let mut acts = Vec::new();
+        models.forward.activations(q, &qd, cut, &mut acts).unwrap();
+        assert!(models.command_gain(&features, &acts, q, weights, &mut a));
+        (u, a)
+    }
+
+    /// Still samples whose torque exceeds `ĝ` by `δ` teach the correction; the command then
+    /// moves only in the null space of its `Â` (the same task acceleration), by the faded null
+    /// part of `δ`; a saved and reloaded learner commands the same bits, and with the option
+    /// switched off the command it gave before the samples.
+    #[test]
+    fn the_correction_moves_the_command_in_the_null_space_only() {
+        let mut cfg = fixture::config();
+        cfg.gravity.null_correction = true;
+        let (mut learner, _, last) = fixture::ready(cfg, 200, 2000);
+        let q = last.q.as_slice().to_vec();
+        let (before, a) = command_and_gain(&mut learner, &q);
+        let mut g = [0.0; 3];
+        learner.gravity(&q, &mut g).unwrap();
+        let delta = [1.0, -0.5, 0.8];
+        let mut prev = last.clone();
+        prev.qd.fill(0.0);
+        for i in 0..3 {
+            prev.u[i] = g[i] + delta[i];
+        }
+        for _ in 0..300 {
+            let mut cur = prev.clone();
+            cur.t += 0.002;
+            learner.learn_static_gravity(&prev, &cur).unwrap();
+            prev = cur;
+        }
+        let (after, _) = command_and_gain(&mut learner, &q);
+        let du: Vec<f64> = (0..3).map(|j| after[j] - before[j]).collect();
+        // The null space of a 2×3 `Â` is spanned by the cross product of its rows.
+        let (r0, r1) = (&a[..3], &a[3..]);
+        let nv = [
+            r0[1] * r1[2] - r0[2] * r1[1],
+            r0[2] * r1[0] - r0[0] * r1[2],
+            r0[0] * r1[1] - r0[1] * r1[0],
+        ];
+        let nn = nv.iter().map(|v| v * v).sum::<f64>().sqrt();
+        let null_delta = (0..3).map(|j| delta[j] * nv[j] / nn).sum::<f64>();
+        let null_du = (0..3).map(|j| du[j] * nv[j] / nn).sum::<f64>();
+        let norm = du.iter().map(|v| v * v).sum::<f64>().sqrt();
+        for row in [r0, r1] {
+            let task = (0..3).map(|j| row[j] * du[j]).sum::<f64>();
+            assert!(task.abs() <= 1e-9 * norm, "task part {task} of {du:?}");
+        }
+        let fade = null_du / null_delta;
+        assert!(fade > 0.5 && fade <= 1.0, "{null_du} vs {null_delta}");
+        let mut loaded = Learner::from_bytes(&learner.to_bytes().unwrap()).unwrap();
+        let (reloaded, _) = command_and_gain(&mut loaded, &q);
+        assert_eq!(reloaded.map(f64::to_bits), after.map(f64::to_bits));
+        loaded.cfg.gravity.null_correction = false;
+        let (off, _) = command_and_gain(&mut loaded, &q);
+        assert_eq!(off.map(f64::to_bits), before.map(f64::to_bits));
+    }
+}
