@@ -82,6 +82,10 @@ pub struct GravityConfig {
     /// least this (≥ 0). Default 0.1: a field fitted at one posture has no information on its
     /// slopes, and the ridge keeps them near 0 until its samples spread.
     pub null_ridge: f64,
+    /// A hold teaches the correction only if it gave at least this many still samples (≥ 1),
+    /// all at its end. Default 100 (0.2 s at 2 ms): a hold cut short, or a field fitted to a
+    /// few samples of an arm still settling, would move the command on a guess.
+    pub null_min_samples: usize,
 }
 
 /// The partition: the forward model `ẍ = f(q, q̇, u)` (eqs. 32–33) whose receptive fields carry
@@ -332,6 +336,7 @@ impl Default for GravityConfig {
             null_correction: true,
             null_support: 0.1,
             null_ridge: 0.1,
+            null_min_samples: 100,
         }
     }
 }

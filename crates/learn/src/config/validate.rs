@@ -81,6 +81,9 @@ impl LearnerConfig {
         ensure(finite_at_least(g.null_ridge, 0.0), || {
             format!("gravity.null_ridge {} must be finite and ≥ 0", g.null_ridge)
         })?;
+        ensure(g.null_min_samples >= 1, || {
+            "gravity.null_min_samples must be ≥ 1".into()
+        })?;
         let d = &self.dynamics;
         ensure(d.forgetting > 0.0 && d.forgetting <= 1.0, || {
             format!("dynamics.forgetting {} must be in (0, 1]", d.forgetting)

@@ -35,6 +35,10 @@ pub struct GravityModel {
     /// Static variant: the still samples learned per posture so far
     /// (`StaticGate::max_samples_per_posture`).
     budget: PostureBudget,
+    /// The budget is lifted (not saved): every still sample counts, as while the null-space
+    /// correction re-adapts (`learner/null_gravity.rs`).
+    #[serde(skip)]
+    unbudgeted: bool,
     #[serde(skip)]
     x: Vec<f64>,
 }
@@ -98,6 +102,7 @@ impl GravityModel {
             velocity_scale,
             gate: None,
             budget: PostureBudget::default(),
+            unbudgeted: false,
             x: vec![0.0; d],
         })
     }
@@ -162,7 +167,7 @@ impl GravityModel {
             if !still {
                 return Ok(());
             }
-            if g.max_samples_per_posture > 0 {
+            if g.max_samples_per_posture > 0 && !self.unbudgeted {
                 match self
                     .budget
                     .slot(&self.x[..n], g.posture_radius, g.max_samples_per_posture)
@@ -220,6 +225,12 @@ impl GravityModel {
             }
             Err(e) => Err(e.into()),
         }
+    }
+
+    /// Lifts the static variant's budget per posture (`true`) or restores it: while lifted,
+    /// every still sample is learned and none is counted.
+    pub(crate) fn set_unbudgeted(&mut self, lifted: bool) {
+        self.unbudgeted = lifted;
     }
 
     /// Re-creates the skipped query buffers after deserialisation.

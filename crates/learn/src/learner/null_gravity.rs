@@ -96,9 +96,9 @@ impl Learner {
         Ok(known)
     }
 
-    /// The null-space correction learns the transition `prev → cur` (the static gate decides
-    /// whether it is still): the target `u − ĝ(q) − c(q)` at `cur`. The model is made at the
-    /// first call, so a controller trained without it can learn one.
+    /// Keeps the transition `prev → cur` of a hold at a path posture for the null-space
+    /// correction if it is still (the static gate): the target `u − ĝ(q) − c(q)` at `cur`. The
+    /// correction learns a hold's samples at its end ([`Learner::end_hold`]).
     ///
     /// # Errors
     /// A model failure; nothing before the models exist.
@@ -111,13 +111,10 @@ impl Learner {
         let super::State::Ready(models) = &mut self.state else {
             return Ok(());
         };
-        if !(dt > 0.0) {
+        if !(dt > 0.0) || !still(&self.cfg, prev, cur, dt) {
             return Ok(());
         }
-        let (n, cfg, ws) = (self.n, &self.cfg, &mut self.ws);
-        if models.gravity_null.is_none() {
-            models.gravity_null = Some(new_model(cfg, n, &models.torque_scale)?);
-        }
+        let (cfg, ws) = (&self.cfg, &mut self.ws);
         let (q, qd, u) = (cur.q.as_slice(), cur.qd.as_slice(), cur.u.as_slice());
         gravity_into(
             &cfg.gravity,
@@ -135,9 +132,72 @@ impl Learner {
         for (((p, ui), g), c) in ws.pi.iter_mut().zip(u).zip(&ws.z).zip(&ws.load_c) {
             *p = ui - g - c;
         }
-        let r = models.gravity_null.as_mut().expect("made above");
-        r.learn(prev.q.as_slice(), prev.qd.as_slice(), q, qd, &ws.pi, dt)
+        let row = &mut self.hold.rows;
+        row.extend_from_slice(prev.q.as_slice());
+        row.extend_from_slice(prev.qd.as_slice());
+        row.extend_from_slice(q);
+        row.extend_from_slice(qd);
+        row.extend_from_slice(&ws.pi);
+        row.push(dt);
+        Ok(())
     }
+
+    /// The end of a hold at a path posture (the training driver's `posture_holds`): the
+    /// null-space correction learns the hold's still samples if there are at least
+    /// `gravity.null_min_samples` of them, else none; either way they are dropped. A hold cut
+    /// short (a run that ends in it) thus never leaves a field fitted to a few samples. The
+    /// model is made at its first samples, so a controller trained without it can learn one.
+    /// While the re-adaptation has detected a change, the budget of samples per posture is
+    /// lifted, so postures held before the change learn the changed robot.
+    ///
+    /// # Errors
+    /// A model failure (the model keeps the samples learned before it).
+    pub fn end_hold(&mut self) -> Result<()> {
+        let rows = std::mem::take(&mut self.hold.rows);
+        let n = self.n;
+        let width = 5 * n + 1;
+        let super::State::Ready(models) = &mut self.state else {
+            return Ok(());
+        };
+        let result = if rows.len() / width >= self.cfg.gravity.null_min_samples.max(1) {
+            if models.gravity_null.is_none() {
+                models.gravity_null = Some(new_model(&self.cfg, n, &models.torque_scale)?);
+            }
+            let r = models.gravity_null.as_mut().expect("made above");
+            // While a detected change is re-adapted, the postures already held must learn again.
+            r.set_unbudgeted(self.adapt.detected || self.adapt.strength > 0.0);
+            rows.chunks_exact(width).try_for_each(|s| {
+                let (q0, rest) = s.split_at(n);
+                let (qd0, rest) = rest.split_at(n);
+                let (q1, rest) = rest.split_at(n);
+                let (qd1, rest) = rest.split_at(n);
+                let (target, dt) = rest.split_at(n);
+                r.learn(q0, qd0, q1, qd1, target, dt[0])
+            })
+        } else {
+            Ok(())
+        };
+        // Keep the buffer's capacity for the next hold.
+        self.hold.rows = rows;
+        self.hold.rows.clear();
+        result
+    }
+}
+
+/// The still samples of one hold: rows of `q0, q̇0, q1, q̇1, target` (n each) and `dt`.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct HoldBatch {
+    rows: Vec<f64>,
+}
+
+/// Whether the transition `prev → cur` is still by the static gate (midpoint speed, `Δq̇/Δt`),
+/// as the gravity model's own check.
+fn still(cfg: &LearnerConfig, prev: &Measurement, cur: &Measurement, dt: f64) -> bool {
+    let gate = cfg.gravity.static_gate.unwrap_or_default();
+    (0..prev.qd.len()).all(|i| {
+        (0.5 * (prev.qd[i] + cur.qd[i])).abs() < gate.max_velocity
+            && ((cur.qd[i] - prev.qd[i]) / dt).abs() < gate.max_acceleration
+    })
 }
 
 #[cfg(test)]
@@ -163,7 +223,8 @@ mod tests {
         (u, a)
     }
 
-    /// Still samples whose torque exceeds `ĝ` by `δ` teach the correction; the command then
+    /// Still samples whose torque exceeds `ĝ` by `δ` teach the correction at the end of a hold
+    /// long enough (a short one teaches nothing); the command then
     /// moves only in the null space of its `Â` (the same task acceleration), by the faded null
     /// part of `δ`; a saved and reloaded learner commands the same bits, and with the option
     /// switched off the command it gave before the samples.
@@ -182,12 +243,25 @@ mod tests {
         for i in 0..3 {
             prev.u[i] = g[i] + delta[i];
         }
-        for _ in 0..300 {
-            let mut cur = prev.clone();
-            cur.t += 0.002;
-            learner.learn_static_gravity(&prev, &cur).unwrap();
-            prev = cur;
-        }
+        let mut hold = |learner: &mut Learner, k: usize| {
+            for _ in 0..k {
+                let mut cur = prev.clone();
+                cur.t += 0.002;
+                learner.learn_static_gravity(&prev, &cur).unwrap();
+                prev = cur;
+            }
+        };
+        // A hold with fewer still samples than `null_min_samples` teaches nothing.
+        let short_hold = learner.cfg.gravity.null_min_samples - 1;
+        hold(&mut learner, short_hold);
+        learner.end_hold().unwrap();
+        let (short, _) = command_and_gain(&mut learner, &q);
+        assert_eq!(short.map(f64::to_bits), before.map(f64::to_bits));
+        hold(&mut learner, 300);
+        // Nothing is learned before the hold ends.
+        let (during, _) = command_and_gain(&mut learner, &q);
+        assert_eq!(during.map(f64::to_bits), before.map(f64::to_bits));
+        learner.end_hold().unwrap();
         let (after, _) = command_and_gain(&mut learner, &q);
         let du: Vec<f64> = (0..3).map(|j| after[j] - before[j]).collect();
         // The null space of a 2×3 `Â` is spanned by the cross product of its rows.

@@ -59,6 +59,9 @@ pub struct Learner {
     pub(crate) adapt: AdaptationSignal,
     /// The load correction of `u0` learned while re-adapting (saved; empty until then).
     pub(crate) load: LoadCorrection,
+    /// The still samples of the current hold at a path posture, for the null-space correction
+    /// (`null_gravity.rs`; not saved).
+    pub(crate) hold: super::null_gravity::HoldBatch,
 }
 
 impl Learner {
@@ -102,6 +105,7 @@ impl Learner {
             ws,
             adapt: AdaptationSignal::default(),
             load: LoadCorrection::default(),
+            hold: Default::default(),
         })
     }
 

@@ -66,6 +66,7 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
                 }
             }
             self.pd_move(&target, ph.move_seconds, ph.hold_seconds, 0.0, limit)?;
+            self.learner.end_hold()?;
         }
         (self.learning, self.static_only) = (learning, static_only);
         Ok(())
