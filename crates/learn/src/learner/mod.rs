@@ -32,6 +32,7 @@ mod features;
 pub(crate) mod fixture;
 mod guards;
 mod hindsight;
+mod hold;
 mod inertia;
 #[cfg(test)]
 mod inertia_tests;
@@ -42,6 +43,8 @@ mod metric_tests;
 mod models;
 mod nominal;
 mod null_gravity;
+#[cfg(test)]
+mod null_gravity_tests;
 mod null_space;
 mod projection;
 mod readapt;

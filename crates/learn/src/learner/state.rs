@@ -61,7 +61,7 @@ pub struct Learner {
     pub(crate) load: LoadCorrection,
     /// The still samples of the current hold at a path posture, for the null-space correction
     /// (`null_gravity.rs`; not saved).
-    pub(crate) hold: super::null_gravity::HoldBatch,
+    pub(crate) hold: super::hold::HoldBatch,
 }
 
 impl Learner {
