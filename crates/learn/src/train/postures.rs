@@ -43,16 +43,13 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
     }
 
     /// Moves to `count` recorded postures (drawn uniformly, with replacement) and holds each,
-    /// under the noise-free PD with `ĝ`; the null-space correction or the static gravity model
-    /// learns (or everything, as configured). Each move after the first starts its reference at
-    /// the posture held before. Returns the last posture held: `None` (nothing done) if the
-    /// option is off or nothing is recorded yet.
-    pub(super) fn posture_holds(&mut self, limit: u64) -> Result<Option<Vec<f64>>> {
+    /// under the noise-free PD with `ĝ`; the static gravity model learns (or everything, as
+    /// configured). Nothing if the option is off or nothing is recorded yet.
+    pub(super) fn posture_holds(&mut self, limit: u64) -> Result<()> {
         let ph = self.cfg.posture_holds.clone();
         if ph.count == 0 || self.postures.postures.is_empty() {
-            return Ok(None);
+            return Ok(());
         }
-        let mut held: Option<Vec<f64>> = None;
         let (learning, static_only) = (self.learning, self.static_only);
         if ph.static_only {
             self.static_only = self.learning;
@@ -68,22 +65,10 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
                     *t = if hi > lo { (*t + d).clamp(lo, hi) } else { *t };
                 }
             }
-            let start = match held.take() {
-                Some(h) => h,
-                None => self.prev.q.as_slice().to_vec(),
-            };
-            self.pd_move_from(
-                &start,
-                &target,
-                ph.move_seconds,
-                ph.hold_seconds,
-                0.0,
-                limit,
-            )?;
+            self.pd_move(&target, ph.move_seconds, ph.hold_seconds, 0.0, limit)?;
             self.learner.end_hold()?;
-            held = Some(target);
         }
         (self.learning, self.static_only) = (learning, static_only);
-        Ok(held)
+        Ok(())
     }
 }
