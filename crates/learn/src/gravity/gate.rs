@@ -34,6 +34,15 @@ impl Default for StaticGate {
 }
 
 impl StaticGate {
+    /// Whether a transition from joint speeds `qd0` to `qd1` over `dt` seconds is still:
+    /// every joint's midpoint speed and `Δq̇ / dt` below the limits.
+    pub fn is_still(&self, qd0: &[f64], qd1: &[f64], dt: f64) -> bool {
+        qd0.iter().zip(qd1).all(|(a, b)| {
+            (0.5 * (a + b)).abs() < self.max_velocity
+                && ((b - a) / dt).abs() < self.max_acceleration
+        })
+    }
+
     /// Checks the ranges: both still limits and the posture radius finite and positive.
     ///
     /// # Errors

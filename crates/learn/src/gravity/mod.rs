@@ -161,9 +161,7 @@ impl GravityModel {
         }
         let mut slot = None;
         if let Some(g) = self.gate {
-            let still = (0..n).all(|i| {
-                self.x[n + i].abs() < g.max_velocity && self.x[2 * n + i].abs() < g.max_acceleration
-            });
+            let still = g.is_still(qd0, qd1, dt);
             if !still {
                 return Ok(());
             }

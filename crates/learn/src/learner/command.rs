@@ -185,7 +185,7 @@ impl Learner {
 
     /// The null-space correction (`null_gravity.rs`) under the `Â` of the command's blend
     /// (active fields in `ws.acts`), added to `u`; nothing without it or without an `Â`.
-    fn add_null_correction(&mut self, q: &[f64], u: &mut [f64]) -> Result<()> {
+    pub(super) fn add_null_correction(&mut self, q: &[f64], u: &mut [f64]) -> Result<()> {
         let State::Ready(models) = &mut self.state else {
             return Ok(());
         };

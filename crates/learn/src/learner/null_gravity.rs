@@ -84,15 +84,7 @@ impl Learner {
         if cfg.experimental.residual {
             self.load.add_into(&ws.acts, u0);
         }
-        let weights = (cut, cfg.controllers.trained_ess);
-        if cfg.gravity.null_correction
-            && models.command_gain(&self.features, &ws.acts, q, weights, &mut ws.a_hat)
-            && null_correction_into_z(cfg, models, ws, q)?
-        {
-            for (o, z) in u0.iter_mut().zip(&ws.z) {
-                *o += z;
-            }
-        }
+        self.add_null_correction(q, u0)?;
         Ok(known)
     }
 
@@ -111,7 +103,8 @@ impl Learner {
         let super::State::Ready(models) = &mut self.state else {
             return Ok(());
         };
-        if !(dt > 0.0) || !still(&self.cfg, prev, cur, dt) {
+        let gate = self.cfg.gravity.static_gate.unwrap_or_default();
+        if !(dt > 0.0) || !gate.is_still(prev.qd.as_slice(), cur.qd.as_slice(), dt) {
             return Ok(());
         }
         let (cfg, ws) = (&self.cfg, &mut self.ws);
@@ -182,14 +175,4 @@ impl Learner {
         self.hold.rows.clear();
         result
     }
-}
-
-/// Whether the transition `prev → cur` is still by the static gate (midpoint speed, `Δq̇/Δt`),
-/// as the gravity model's own check.
-fn still(cfg: &LearnerConfig, prev: &Measurement, cur: &Measurement, dt: f64) -> bool {
-    let gate = cfg.gravity.static_gate.unwrap_or_default();
-    (0..prev.qd.len()).all(|i| {
-        (0.5 * (prev.qd[i] + cur.qd[i])).abs() < gate.max_velocity
-            && ((cur.qd[i] - prev.qd[i]) / dt).abs() < gate.max_acceleration
-    })
 }
