@@ -44,8 +44,24 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
         noise: f64,
         limit: u64,
     ) -> Result<()> {
-        let n = target.len();
         let start: Vec<f64> = self.prev.q.as_slice().to_vec();
+        self.pd_move_from(&start, target, total, settle, noise, limit)
+    }
+
+    /// [`Self::pd_move`] with the reference starting at `start` instead of the measured
+    /// posture: a move that follows a hold at `start` keeps the hold's PD command continuous
+    /// (under a gravity error the arm sags from the held posture, and a reference starting at
+    /// the measured one would drop the P-term in one period).
+    pub(super) fn pd_move_from(
+        &mut self,
+        start: &[f64],
+        target: &[f64],
+        total: f64,
+        settle: f64,
+        noise: f64,
+        limit: u64,
+    ) -> Result<()> {
+        let n = target.len();
         let (mut q_t, mut v_t) = (vec![0.0; n], vec![0.0; n]);
         for k in 0..((total + settle) / self.dt).round() as u64 {
             if self.steps >= limit {

@@ -43,8 +43,10 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
         } else {
             self.cfg.switch_seconds
         });
-        self.posture_holds(limit)?;
-        self.pd_move(&home, 2.0, 0.0, 0.0, limit)?;
+        match self.posture_holds(limit)? {
+            Some(held) => self.pd_move_from(&held, &home, 2.0, 0.0, 0.0, limit)?,
+            None => self.pd_move(&home, 2.0, 0.0, 0.0, limit)?,
+        }
         self.hold_home(limit)
     }
 

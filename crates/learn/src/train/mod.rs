@@ -11,6 +11,8 @@ mod config;
 #[cfg(test)]
 mod continuation_tests;
 mod curriculum;
+#[cfg(test)]
+mod held_reference_tests;
 mod home;
 mod observer;
 mod on_policy;
@@ -37,7 +39,7 @@ pub use observer::{
     EpisodeOutcome, EpisodeRecord, EpisodeReport, Observer, OnEvaluation, Phase, Progress,
 };
 pub use paths::PathSource;
-pub use posture_holds::PostureHolds;
+pub use posture_holds::{HeldReference, PostureHolds};
 pub use safety::{StepPoint, STEP_BIN_SECONDS};
 pub use trainer::{Evaluate, TrainSummary, Trainer};
 

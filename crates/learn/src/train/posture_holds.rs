@@ -35,6 +35,26 @@ pub struct PostureHolds {
     /// return home does (`learn_returning_home`). Default true: noise-free PD data carry no
     /// excitation for `Â` and the local controllers.
     pub static_only: bool,
+    /// When a move after a hold starts its reference at the posture held instead of the
+    /// measured one. Default `readapting`: while the learner re-adapts to a changed robot
+    /// (`ĝ` wrong), the arm sags from a held posture and a reference at the measured posture
+    /// drops the PD's P-term in one period; without a change the held reference measured worse
+    /// (D37).
+    pub held_reference: HeldReference,
+}
+
+/// When the move after a hold at a path posture starts its reference at the held posture
+/// ([`PostureHolds::held_reference`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum HeldReference {
+    /// Always at the measured posture.
+    Never,
+    /// At the held posture while the learner re-adapts (a change detected or a strength above
+    /// 0, [`crate::AdaptationSignal`]).
+    Readapting,
+    /// Always at the held posture.
+    Always,
 }
 
 impl Default for PostureHolds {
@@ -47,6 +67,7 @@ impl Default for PostureHolds {
             jitter: 0.0,
             pool: 64,
             static_only: true,
+            held_reference: HeldReference::Readapting,
         }
     }
 }

@@ -1,5 +1,6 @@
-//! Holds at path postures (`TrainConfig::posture_holds`, off by default): the static gravity
-//! model's still samples where the task path goes, not only where the babbling went.
+//! Holds at path postures (`TrainConfig::posture_holds`, 3 per return home by default): still
+//! samples of gravity where the task path goes, not only where the babbling went, for the
+//! null-space correction (or the static gravity model).
 //!
 //! The babbling holds random targets around home (sarcos7: ±0.2 rad per joint, about 150 holds
 //! in 4 minutes), a sparse cover of 7-D joint space; the figure-8's postures reach 0.29 rad from
@@ -9,8 +10,11 @@
 //! gate). Here the driver records the measured postures of its episodes (model-free: the arm's
 //! own `q`) and, on the way home after an episode, moves to a few of them under the noise-free
 //! PD with `ĝ` and holds each until the arm rests, as the babbling does: `u = g(q)` exactly there.
+//! While the learner re-adapts, a move after a hold starts its reference at the posture held
+//! (`held_reference`): the arm sags from it under the gravity error, and a reference at the
+//! measured posture would drop the P-term that carries the error in one period.
 
-use super::Trainer;
+use super::{HeldReference, Trainer};
 use crate::error::Result;
 use osrl_dynamics::Robot;
 use rand::RngExt;
@@ -42,14 +46,30 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
         ((self.cfg.posture_holds.record_every / self.dt).round() as u64).max(1)
     }
 
+    /// Whether a move after a hold starts its reference at the held posture
+    /// (`posture_holds.held_reference`).
+    fn held_reference(&self) -> bool {
+        match self.cfg.posture_holds.held_reference {
+            HeldReference::Never => false,
+            HeldReference::Always => true,
+            HeldReference::Readapting => {
+                let a = self.learner.adaptation();
+                a.detected || a.strength > 0.0
+            }
+        }
+    }
+
     /// Moves to `count` recorded postures (drawn uniformly, with replacement) and holds each,
-    /// under the noise-free PD with `ĝ`; the static gravity model learns (or everything, as
-    /// configured). Nothing if the option is off or nothing is recorded yet.
-    pub(super) fn posture_holds(&mut self, limit: u64) -> Result<()> {
+    /// under the noise-free PD with `ĝ`; the null-space correction or the static gravity model
+    /// learns (or everything, as configured). Returns the last posture held if the move after
+    /// it is to start its reference there ([`HeldReference`]); each move after the first does
+    /// then too. `None` also if the option is off or nothing is recorded yet.
+    pub(super) fn posture_holds(&mut self, limit: u64) -> Result<Option<Vec<f64>>> {
         let ph = self.cfg.posture_holds.clone();
         if ph.count == 0 || self.postures.postures.is_empty() {
-            return Ok(());
+            return Ok(None);
         }
+        let mut held: Option<Vec<f64>> = None;
         let (learning, static_only) = (self.learning, self.static_only);
         if ph.static_only {
             self.static_only = self.learning;
@@ -65,10 +85,21 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
                     *t = if hi > lo { (*t + d).clamp(lo, hi) } else { *t };
                 }
             }
-            self.pd_move(&target, ph.move_seconds, ph.hold_seconds, 0.0, limit)?;
+            match held.take() {
+                Some(start) => self.pd_move_from(
+                    &start,
+                    &target,
+                    ph.move_seconds,
+                    ph.hold_seconds,
+                    0.0,
+                    limit,
+                )?,
+                None => self.pd_move(&target, ph.move_seconds, ph.hold_seconds, 0.0, limit)?,
+            }
             self.learner.end_hold()?;
+            held = self.held_reference().then_some(target);
         }
         (self.learning, self.static_only) = (learning, static_only);
-        Ok(())
+        Ok(held)
     }
 }
