@@ -49,6 +49,11 @@ pub struct Local {
     /// Commands this controller took part in since its last M-step (saturating).
     #[serde(skip)]
     pub ramp: u32,
+    /// `Â_i`'s coefficients of the local dynamics laid out for the blend
+    /// (`Features::gain_table`), rebuilt at each M-step of the dynamics. Empty until the first
+    /// one after creation or a load; `Θ` is then read directly, with the same bits.
+    #[serde(skip)]
+    pub gain_table: Vec<f64>,
 }
 
 /// What a new local controller is made of: its feature counts and regression settings.
@@ -77,6 +82,8 @@ pub(crate) struct Pace {
     pub trust_scale: f64,
     /// `controllers.step_spread`.
     pub spread: usize,
+    /// The feature layout (for [`Local::gain_table`]).
+    pub features: crate::learner::Features,
 }
 
 /// The outcome of one M-step of a local controller.
@@ -108,6 +115,8 @@ impl Local {
         let solve = pace.solve_always || self.updates.is_multiple_of(pace.solve_every);
         if solve && self.dynamics.update().is_ok() {
             self.dynamics_updates += 1;
+            pace.features
+                .gain_table(self.dynamics.theta(), &mut self.gain_table);
         }
         if pace.spread > 1 {
             // Ramp from the β commanded now (mid-ramp: the blend) to the new one.
@@ -211,6 +220,7 @@ impl LocalControllers {
                 last_active: now,
                 theta_from: None,
                 ramp: 0,
+                gain_table: Vec::with_capacity(spec.m * (spec.n + spec.n * spec.n)),
             },
         );
         Ok(())

@@ -155,6 +155,67 @@ impl Features {
         self.add_gain_columns(theta, q, center, w, a);
     }
 
+    /// The coefficients of `Â_i(q)` from `theta` in the order [`Self::add_gain_table`] reads
+    /// them, into `table` (resized; no allocation once it has the capacity): per task row `k`,
+    /// `Θ_u[·, k]` (n values), then for each `i` the column `Θ_{u_j q_i}[·, k]` over `j` (n
+    /// values each). Empty (and `false`) without the bilinear terms or above 16 joints, where
+    /// [`Self::add_gain`] reads `Θ` directly.
+    pub fn gain_table(&self, theta: &DMatrix<f64>, table: &mut Vec<f64>) -> bool {
+        let n = self.n;
+        if !(self.bilinear && n <= SMALL_N) {
+            table.clear();
+            return false;
+        }
+        let rows = theta.nrows();
+        table.resize(self.m * (n + n * n), 0.0);
+        for (k, out) in table.chunks_exact_mut(n + n * n).enumerate() {
+            let col = &theta.as_slice()[k * rows..(k + 1) * rows];
+            out[..n].copy_from_slice(&col[..n]);
+            for i in 0..n {
+                for j in 0..n {
+                    out[n + i * n + j] = col[3 * n + 1 + j * n + i];
+                }
+            }
+        }
+        true
+    }
+
+    /// [`Self::add_gain`] from a table of [`Self::gain_table`]: the same sums in the same
+    /// order (the same bits), read contiguously; for 2–8 joints with the sums in registers.
+    pub fn add_gain_table(&self, table: &[f64], q: &[f64], center: &[f64], w: f64, a: &mut [f64]) {
+        match self.n {
+            2 => gain_table_n::<2>(table, q, center, w, a),
+            3 => gain_table_n::<3>(table, q, center, w, a),
+            4 => gain_table_n::<4>(table, q, center, w, a),
+            5 => gain_table_n::<5>(table, q, center, w, a),
+            6 => gain_table_n::<6>(table, q, center, w, a),
+            7 => gain_table_n::<7>(table, q, center, w, a),
+            8 => gain_table_n::<8>(table, q, center, w, a),
+            _ => self.add_gain_table_any(table, q, center, w, a),
+        }
+    }
+
+    /// [`Self::add_gain_table`] for any number of joints (up to 16).
+    fn add_gain_table_any(&self, table: &[f64], q: &[f64], center: &[f64], w: f64, a: &mut [f64]) {
+        let n = self.n;
+        let mut dq = [0.0; SMALL_N];
+        for i in 0..n {
+            dq[i] = q[i] - center[i];
+        }
+        for (k, rowk) in table.chunks_exact(n + n * n).enumerate() {
+            let mut g = [0.0; SMALL_N];
+            g[..n].copy_from_slice(&rowk[..n]);
+            for (i, t) in rowk[n..].chunks_exact(n).enumerate() {
+                for (gj, tj) in g[..n].iter_mut().zip(t) {
+                    *gj += dq[i] * tj;
+                }
+            }
+            for (aj, gj) in a[k * n..(k + 1) * n].iter_mut().zip(&g[..n]) {
+                *aj += w * gj;
+            }
+        }
+    }
+
     /// [`Features::add_gain`] one entry at a time (any number of joints).
     fn add_gain_columns(
         &self,
@@ -185,6 +246,28 @@ impl Features {
     }
 }
 
+/// [`Features::add_gain_table`] for `N` joints: the sums of each task row in registers.
+#[inline(always)]
+fn gain_table_n<const N: usize>(table: &[f64], q: &[f64], center: &[f64], w: f64, a: &mut [f64]) {
+    let mut dq = [0.0; N];
+    for i in 0..N {
+        dq[i] = q[i] - center[i];
+    }
+    for (rowk, ak) in table.chunks_exact(N + N * N).zip(a.chunks_exact_mut(N)) {
+        let mut g = [0.0; N];
+        g.copy_from_slice(&rowk[..N]);
+        for i in 0..N {
+            let t = &rowk[N + i * N..N + (i + 1) * N];
+            for j in 0..N {
+                g[j] += dq[i] * t[j];
+            }
+        }
+        for j in 0..N {
+            ak[j] += w * g[j];
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::Features;
@@ -210,6 +293,30 @@ mod tests {
         );
         // u_j (q_k − c_k), row j.
         assert_eq!(&d[10..], &[1.0, 0.0, -1.0, 2.0, 0.0, -2.0, 3.0, 0.0, -3.0]);
+    }
+
+    /// The gain from a table of `gain_table` is `add_gain`'s, bit for bit, for 3 task rows and
+    /// 3, 7 (in registers) and 10 joints (on the stack); without the bilinear terms there is no
+    /// table.
+    #[test]
+    fn the_gain_table_gives_the_same_bits_as_theta() {
+        for n in [3, 7, 10] {
+            let f = Features::new(n, 3, true, true);
+            let theta = DMatrix::from_fn(f.dynamics_len(), 3, |r, c| {
+                ((r * 31 + c * 17) as f64 * 0.7351).sin() * 10f64.powi((r % 5) as i32 - 2)
+            });
+            let q: Vec<f64> = (0..n).map(|i| (i as f64 * 1.3).cos()).collect();
+            let c: Vec<f64> = (0..n).map(|i| 0.1 * i as f64 - 0.3).collect();
+            let mut table = Vec::new();
+            assert!(f.gain_table(&theta, &mut table));
+            let (mut a, mut b) = (vec![0.25; 3 * n], vec![0.25; 3 * n]);
+            f.add_gain(&theta, &q, &c, 0.37, &mut a);
+            f.add_gain_table(&table, &q, &c, 0.37, &mut b);
+            let same = a.iter().zip(&b).all(|(x, y)| x.to_bits() == y.to_bits());
+            assert!(same, "{n} joints: {a:?}\n{b:?}");
+            assert!(!Features::new(n, 3, true, false).gain_table(&theta, &mut table));
+            assert!(table.is_empty());
+        }
     }
 
     /// The difference form of `φ_d` is the change of the levels over `Δt`, with 0 for the

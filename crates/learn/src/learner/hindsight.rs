@@ -355,6 +355,7 @@ impl Step<'_> {
                 1.0
             },
             spread: self.cfg.controllers.step_spread,
+            features: *self.features,
         };
         let (lo, hi) = (&self.models.velocity_gain_lo, &self.models.velocity_gain_hi);
         let floor = if difference {

@@ -201,7 +201,11 @@ impl Models {
             if !(w > 0.0) {
                 continue;
             }
-            features.add_gain(local.dynamics.theta(), q, &local.center, w, a);
+            if local.gain_table.is_empty() {
+                features.add_gain(local.dynamics.theta(), q, &local.center, w, a);
+            } else {
+                features.add_gain_table(&local.gain_table, q, &local.center, w, a);
+            }
             sum_w += w;
         }
         if sum_w <= 0.0 {
