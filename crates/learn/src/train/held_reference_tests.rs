@@ -1,7 +1,8 @@
 //! `PostureHolds::held_reference`: under a gravity error (a learner trained on the unloaded
 //! planar3, continued on the arm with a 0.5 kg payload) the arm sags from each held posture; a
 //! move that starts its reference at the held posture keeps the PD command continuous, one that
-//! starts at the measured posture drops the P-term in one period.
+//! starts at the measured posture drops the P-term in one period. And
+//! `PostureHolds::readapting_count`: how many postures a re-adapting learner holds.
 
 use super::{BabbleConfig, HeldReference, PostureHolds, TrainConfig};
 use crate::learner::fixture;
@@ -109,5 +110,55 @@ fn a_move_from_a_held_posture_keeps_the_command_continuous() {
     assert!(
         held < 0.5 * measured,
         "largest step {held} N·m from the held posture vs {measured} from the measured one"
+    );
+}
+
+/// The null-space correction's updates after a 0.3-minute continuation of `learner` on the
+/// unloaded arm with `count` holds per return home and `readapting_count` while re-adapting.
+fn null_updates_after(learner: &Learner, count: usize, readapting_count: usize) -> u64 {
+    let mut learner = learner.clone();
+    let cfg = TrainConfig {
+        minutes: 0.3,
+        eval_every_minutes: 0.0,
+        episode_seconds: 3.0,
+        babble: BabbleConfig {
+            minutes: 0.0,
+            ..BabbleConfig::default()
+        },
+        posture_holds: PostureHolds {
+            count,
+            readapting_count,
+            ..holds(HeldReference::Never)
+        },
+        ..TrainConfig::default()
+    };
+    super::run_fixture::train_planar3(&mut robot(0.0), &mut learner, &cfg);
+    let models = fixture::models(&mut learner);
+    models
+        .gravity_null
+        .as_ref()
+        .map_or(0, |g| g.lwpr().n_updates())
+}
+
+/// While the learner re-adapts, the driver holds `readapting_count` postures per return home
+/// instead of `count`: the correction learns more samples in the same time; otherwise the
+/// option changes nothing.
+#[test]
+fn a_readapting_learner_holds_readapting_count_postures() {
+    let mut learner = Learner::new(3, 2, 0.002, fixture::config()).unwrap();
+    let cfg = TrainConfig {
+        episode_seconds: 3.0,
+        posture_holds: holds(HeldReference::Never),
+        ..fixture::short_training(0.8)
+    };
+    super::run_fixture::train_planar3(&mut robot(0.0), &mut learner, &cfg);
+    let before = null_updates_after(&learner, 1, 1);
+    assert_eq!(null_updates_after(&learner, 1, 4), before);
+    learner.adapt.detected = true;
+    let one = null_updates_after(&learner, 1, 1);
+    let four = null_updates_after(&learner, 1, 4);
+    assert!(
+        four > one + 300,
+        "null-space correction updates: {four} vs {one}"
     );
 }

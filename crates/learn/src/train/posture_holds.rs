@@ -14,6 +14,11 @@ pub struct PostureHolds {
     /// correction (`gravity.null_correction`) they are what it learns from (D36); about 4 s per
     /// return home.
     pub count: usize,
+    /// Postures visited per return home while the learner re-adapts (a change detected or a
+    /// strength above 0); none while the option is off (`count = 0`). Default 10: the
+    /// null-space correction learns a changed gravity from these holds only, and a run with a
+    /// change has few returns home (one per episode of up to a minute).
+    pub readapting_count: usize,
     /// Minimum-jerk move to each posture (s). Default 0.8: the babbling's shortest moves are
     /// 0.6 s, and the postures lie within a few tenths of a radian of each other.
     pub move_seconds: f64,
@@ -61,6 +66,7 @@ impl Default for PostureHolds {
     fn default() -> Self {
         Self {
             count: 3,
+            readapting_count: 10,
             move_seconds: 0.8,
             hold_seconds: 0.6,
             record_every: 1.0,

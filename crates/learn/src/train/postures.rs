@@ -46,16 +46,19 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
         ((self.cfg.posture_holds.record_every / self.dt).round() as u64).max(1)
     }
 
+    /// Whether the learner re-adapts: a change detected or a strength above 0.
+    fn readapting(&self) -> bool {
+        let a = self.learner.adaptation();
+        a.detected || a.strength > 0.0
+    }
+
     /// Whether a move after a hold starts its reference at the held posture
     /// (`posture_holds.held_reference`).
     fn held_reference(&self) -> bool {
         match self.cfg.posture_holds.held_reference {
             HeldReference::Never => false,
             HeldReference::Always => true,
-            HeldReference::Readapting => {
-                let a = self.learner.adaptation();
-                a.detected || a.strength > 0.0
-            }
+            HeldReference::Readapting => self.readapting(),
         }
     }
 
@@ -75,7 +78,12 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
             self.static_only = self.learning;
             self.learning = false;
         }
-        for _ in 0..ph.count {
+        let count = if self.readapting() {
+            ph.readapting_count
+        } else {
+            ph.count
+        };
+        for _ in 0..count {
             let k = self.rng.random_range(0..self.postures.postures.len());
             let mut target = self.postures.postures[k].clone();
             if ph.jitter > 0.0 {
