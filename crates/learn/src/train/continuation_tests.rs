@@ -3,41 +3,11 @@
 //! with `freeze_static_in_continuation` leaves the static gravity model as it was.
 
 use super::babble::pd_command;
+use super::run_fixture::Recording;
 use crate::learner::fixture;
 use crate::train::{BabbleConfig, TrainConfig};
 use crate::Learner;
-use osrl_dynamics::{Measurement, Robot, SimRobot};
-
-/// A simulated robot that records the commands it is sent.
-struct Recording {
-    sim: SimRobot,
-    sent: Vec<Vec<f64>>,
-}
-
-impl Robot for Recording {
-    fn dof(&self) -> usize {
-        self.sim.dof()
-    }
-    fn task_dim(&self) -> usize {
-        self.sim.task_dim()
-    }
-    fn control_period(&self) -> f64 {
-        self.sim.control_period()
-    }
-    fn torque_limits(&self) -> &[f64] {
-        self.sim.torque_limits()
-    }
-    fn joint_limits(&self) -> (&[f64], &[f64]) {
-        self.sim.joint_limits()
-    }
-    fn measurement(&self) -> &Measurement {
-        self.sim.measurement()
-    }
-    fn step(&mut self, u: &[f64]) -> osrl_dynamics::Result<&Measurement> {
-        self.sent.push(u.to_vec());
-        self.sim.step(u)
-    }
-}
+use osrl_dynamics::Robot;
 
 /// A continuation of `seconds` (no babbling) on planar3 with `cfg`'s other settings.
 fn continue_for(robot: &mut Recording, learner: &mut Learner, seconds: f64, cfg: TrainConfig) {
@@ -55,10 +25,7 @@ fn continue_for(robot: &mut Recording, learner: &mut Learner, seconds: f64, cfg:
 
 /// The fixture's robot, recording.
 fn recording() -> Recording {
-    Recording {
-        sim: fixture::robot(),
-        sent: Vec::new(),
-    }
+    Recording::new(fixture::robot())
 }
 
 /// With `hold_before_continuation`, the first command of a continuation on planar3 (a learner

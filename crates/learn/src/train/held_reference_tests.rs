@@ -4,47 +4,12 @@
 //! starts at the measured posture drops the P-term in one period. And
 //! `PostureHolds::readapting_count`: how many postures a re-adapting learner holds.
 
+use super::run_fixture::Recording;
 use super::{BabbleConfig, HeldReference, PostureHolds, TrainConfig};
 use crate::learner::fixture;
 use crate::Learner;
 use osrl_control::{RobotChange, TrajectoryConfig};
-use osrl_dynamics::{robots, Measurement, Robot, SimConfig, SimRobot};
-
-/// A simulated robot that keeps the largest change between consecutive commands it is sent.
-struct StepRecorder {
-    sim: SimRobot,
-    last: Option<Vec<f64>>,
-    max_step: f64,
-}
-
-impl Robot for StepRecorder {
-    fn dof(&self) -> usize {
-        self.sim.dof()
-    }
-    fn task_dim(&self) -> usize {
-        self.sim.task_dim()
-    }
-    fn control_period(&self) -> f64 {
-        self.sim.control_period()
-    }
-    fn torque_limits(&self) -> &[f64] {
-        self.sim.torque_limits()
-    }
-    fn joint_limits(&self) -> (&[f64], &[f64]) {
-        self.sim.joint_limits()
-    }
-    fn measurement(&self) -> &Measurement {
-        self.sim.measurement()
-    }
-    fn step(&mut self, u: &[f64]) -> osrl_dynamics::Result<&Measurement> {
-        if let Some(last) = &self.last {
-            let d = u.iter().zip(last).map(|(a, b)| (a - b).abs());
-            self.max_step = d.fold(self.max_step, f64::max);
-        }
-        self.last = Some(u.to_vec());
-        self.sim.step(u)
-    }
-}
+use osrl_dynamics::{robots, SimConfig, SimRobot};
 
 /// The holds of these runs: three per return home, postures recorded every 0.1 s.
 fn holds(held_reference: HeldReference) -> PostureHolds {
@@ -58,17 +23,28 @@ fn holds(held_reference: HeldReference) -> PostureHolds {
 
 /// planar3 (`payload` kg at the end-effector) at rest at the start of its default figure-8,
 /// recording.
-fn robot(payload: f64) -> StepRecorder {
+fn robot(payload: f64) -> Recording {
     let truth = robots::planar3();
     let traj = TrajectoryConfig::default().build(&truth).unwrap();
     let reach = osrl_control::check_reachable(&truth, &traj, &Default::default()).unwrap();
     let change: RobotChange = format!("payload={payload}").parse().unwrap();
     let mut sim = SimRobot::new(change.apply(&truth).unwrap(), SimConfig::default()).unwrap();
     sim.reset(&reach.q_start, &[0.0; 3]).unwrap();
-    StepRecorder {
-        sim,
-        last: None,
-        max_step: 0.0,
+    Recording::new(sim)
+}
+
+/// A continuation of `minutes` (no babbling, 3-s episodes) with `holds`.
+fn continuation(minutes: f64, holds: PostureHolds) -> TrainConfig {
+    TrainConfig {
+        minutes,
+        eval_every_minutes: 0.0,
+        episode_seconds: 3.0,
+        babble: BabbleConfig {
+            minutes: 0.0,
+            ..BabbleConfig::default()
+        },
+        posture_holds: holds,
+        ..TrainConfig::default()
     }
 }
 
@@ -77,27 +53,15 @@ fn robot(payload: f64) -> StepRecorder {
 fn loaded_continuation(learner: &Learner, held_reference: HeldReference) -> f64 {
     let mut learner = learner.clone();
     let mut robot = robot(0.5);
-    let cfg = TrainConfig {
-        minutes: 0.4,
-        eval_every_minutes: 0.0,
-        episode_seconds: 3.0,
-        babble: BabbleConfig {
-            minutes: 0.0,
-            ..BabbleConfig::default()
-        },
-        posture_holds: holds(held_reference),
-        ..TrainConfig::default()
-    };
+    let cfg = continuation(0.4, holds(held_reference));
     let summary = super::run_fixture::train_planar3(&mut robot, &mut learner, &cfg);
     assert!(summary.episodes >= 3, "{summary:?}");
-    robot.max_step
+    robot.max_step()
 }
 
-/// Trained on the unloaded arm, continued on the loaded one: with the reference starting at the
-/// held posture the largest command step is a fraction of the one without, which the sag's
-/// P-term dominates.
-#[test]
-fn a_move_from_a_held_posture_keeps_the_command_continuous() {
+/// A planar3 learner trained for 0.8 minutes (3-s episodes, 3 holds per return home) on the
+/// unloaded arm.
+fn trained_unloaded() -> Learner {
     let mut learner = Learner::new(3, 2, 0.002, fixture::config()).unwrap();
     let cfg = TrainConfig {
         episode_seconds: 3.0,
@@ -105,6 +69,15 @@ fn a_move_from_a_held_posture_keeps_the_command_continuous() {
         ..fixture::short_training(0.8)
     };
     super::run_fixture::train_planar3(&mut robot(0.0), &mut learner, &cfg);
+    learner
+}
+
+/// Trained on the unloaded arm, continued on the loaded one: with the reference starting at the
+/// held posture the largest command step is a fraction of the one without, which the sag's
+/// P-term dominates.
+#[test]
+fn a_move_from_a_held_posture_keeps_the_command_continuous() {
+    let learner = trained_unloaded();
     let measured = loaded_continuation(&learner, HeldReference::Never);
     let held = loaded_continuation(&learner, HeldReference::Always);
     assert!(
@@ -117,21 +90,12 @@ fn a_move_from_a_held_posture_keeps_the_command_continuous() {
 /// unloaded arm with `count` holds per return home and `readapting_count` while re-adapting.
 fn null_updates_after(learner: &Learner, count: usize, readapting_count: usize) -> u64 {
     let mut learner = learner.clone();
-    let cfg = TrainConfig {
-        minutes: 0.3,
-        eval_every_minutes: 0.0,
-        episode_seconds: 3.0,
-        babble: BabbleConfig {
-            minutes: 0.0,
-            ..BabbleConfig::default()
-        },
-        posture_holds: PostureHolds {
-            count,
-            readapting_count,
-            ..holds(HeldReference::Never)
-        },
-        ..TrainConfig::default()
+    let holds = PostureHolds {
+        count,
+        readapting_count,
+        ..holds(HeldReference::Never)
     };
+    let cfg = continuation(0.3, holds);
     super::run_fixture::train_planar3(&mut robot(0.0), &mut learner, &cfg);
     let models = fixture::models(&mut learner);
     models
@@ -145,13 +109,7 @@ fn null_updates_after(learner: &Learner, count: usize, readapting_count: usize) 
 /// option changes nothing.
 #[test]
 fn a_readapting_learner_holds_readapting_count_postures() {
-    let mut learner = Learner::new(3, 2, 0.002, fixture::config()).unwrap();
-    let cfg = TrainConfig {
-        episode_seconds: 3.0,
-        posture_holds: holds(HeldReference::Never),
-        ..fixture::short_training(0.8)
-    };
-    super::run_fixture::train_planar3(&mut robot(0.0), &mut learner, &cfg);
+    let mut learner = trained_unloaded();
     let before = null_updates_after(&learner, 1, 1);
     assert_eq!(null_updates_after(&learner, 1, 4), before);
     learner.adapt.detected = true;
