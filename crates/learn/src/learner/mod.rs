@@ -30,6 +30,9 @@ mod exploration_rate_tests;
 mod features;
 #[cfg(test)]
 pub(crate) mod fixture;
+mod gravity_cache;
+#[cfg(test)]
+mod gravity_cache_tests;
 mod guards;
 mod hindsight;
 mod hold;

@@ -32,6 +32,9 @@ pub(crate) struct Models {
     /// Buffer of the static model's `ĝ` while blending (`nominal.rs`).
     #[serde(skip)]
     pub g_static: Vec<f64>,
+    /// The last `ĝ(q)` (`gravity_cache.rs`).
+    #[serde(skip)]
+    pub g_cache: super::gravity_cache::GravityCache,
     /// The cost's metric `N` (`controllers.metric`, `metric.rs`), from the warm-up; `None`:
     /// `N = I`. Saved with the model (format 10), so a loaded learner learns on in it.
     pub metric: Option<super::metric::Metric>,
@@ -117,6 +120,7 @@ impl Models {
             forward,
             locals: LocalControllers::default(),
             g_static: vec![0.0; n],
+            g_cache: super::gravity_cache::GravityCache::with_joints(n),
             torque_scale: torque,
         })
     }
@@ -124,6 +128,7 @@ impl Models {
     /// Re-creates the query buffers that serialisation skips.
     pub fn restore_buffers(&mut self) {
         self.g_static = vec![0.0; self.torque_scale.len()];
+        self.g_cache = super::gravity_cache::GravityCache::with_joints(self.torque_scale.len());
         self.gravity.restore_buffers();
         for g in [self.gravity_static.as_mut(), self.gravity_null.as_mut()]
             .into_iter()

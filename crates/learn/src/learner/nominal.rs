@@ -11,6 +11,8 @@ use crate::error::Result;
 /// fields; once frozen the blend of both by their total activations `S_s` and `λ S_d`.
 /// Otherwise the switch: the static model where it has support once `ĝ` is frozen, else the
 /// dynamic model.
+/// The last result is kept (`gravity_cache.rs`): the same `q`, settings and model updates
+/// give it back, bit for bit.
 pub(crate) fn gravity_into(
     gcfg: &GravityConfig,
     models: Option<&mut Models>,
@@ -22,6 +24,29 @@ pub(crate) fn gravity_into(
         g.fill(0.0);
         return Ok(false);
     };
+    let key = [
+        u64::from(frozen),
+        u64::from(gcfg.continuous),
+        gcfg.dynamic_weight.to_bits(),
+        models.gravity.lwpr().n_updates(),
+        (models.gravity_static.as_ref()).map_or(u64::MAX, |s| s.lwpr().n_updates()),
+    ];
+    if let Some(known) = models.g_cache.get(&key, q, g) {
+        return Ok(known);
+    }
+    let known = gravity_uncached(gcfg, models, frozen, q, g)?;
+    models.g_cache.put(key, q, g, known);
+    Ok(known)
+}
+
+/// [`gravity_into`] without the cache.
+fn gravity_uncached(
+    gcfg: &GravityConfig,
+    models: &mut Models,
+    frozen: bool,
+    q: &[f64],
+    g: &mut [f64],
+) -> Result<bool> {
     if !gcfg.continuous {
         let from_static = match models.gravity_static.as_mut() {
             Some(s) if frozen => s.predict(q, g)?,
