@@ -99,6 +99,12 @@ impl AdaptationSignal {
         r * (1.0 - self.strength)
     }
 
+    /// Whether the learner re-adapts: a change detected since the last reset, or a strength
+    /// above 0.
+    pub fn readapting(&self) -> bool {
+        self.detected || self.strength > 0.0
+    }
+
     /// The factor on the RWR trust region.
     pub(crate) fn trust_scale(&self, cfg: &AdaptationConfig) -> f64 {
         1.0 + self.strength * (cfg.trust_scale - 1.0)

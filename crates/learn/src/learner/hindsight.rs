@@ -282,8 +282,7 @@ impl Step<'_> {
     fn learn_load(&mut self, cur: &Measurement) -> Result<()> {
         let ad = &self.cfg.adaptation;
         let on = ad.enabled && ad.load_correction && self.cfg.experimental.residual;
-        let detected = self.adapt.strength > 0.0 || self.adapt.detected;
-        let strength = if detected {
+        let strength = if self.adapt.readapting() {
             self.adapt.strength.max(ad.load_floor)
         } else {
             0.0

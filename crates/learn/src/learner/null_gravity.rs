@@ -158,7 +158,7 @@ impl Learner {
             }
             let r = models.gravity_null.as_mut().expect("made above");
             // While a detected change is re-adapted, the postures already held must learn again.
-            r.set_unbudgeted(self.adapt.detected || self.adapt.strength > 0.0);
+            r.set_unbudgeted(self.adapt.readapting());
             rows.chunks_exact(width).try_for_each(|s| {
                 let (q0, rest) = s.split_at(n);
                 let (qd0, rest) = rest.split_at(n);

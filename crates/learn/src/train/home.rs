@@ -43,10 +43,9 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
         } else {
             self.cfg.switch_seconds
         });
-        match self.posture_holds(limit)? {
-            Some(held) => self.pd_move_from(&held, &home, 2.0, 0.0, 0.0, limit)?,
-            None => self.pd_move(&home, 2.0, 0.0, 0.0, limit)?,
-        }
+        let held = self.posture_holds(limit)?;
+        let start = held.unwrap_or_else(|| self.prev.q.as_slice().to_vec());
+        self.pd_move_from(&start, &home, 2.0, 0.0, 0.0, limit)?;
         self.hold_home(limit)
     }
 

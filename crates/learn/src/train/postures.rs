@@ -46,19 +46,13 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
         ((self.cfg.posture_holds.record_every / self.dt).round() as u64).max(1)
     }
 
-    /// Whether the learner re-adapts: a change detected or a strength above 0.
-    fn readapting(&self) -> bool {
-        let a = self.learner.adaptation();
-        a.detected || a.strength > 0.0
-    }
-
     /// Whether a move after a hold starts its reference at the held posture
     /// (`posture_holds.held_reference`).
     fn held_reference(&self) -> bool {
         match self.cfg.posture_holds.held_reference {
             HeldReference::Never => false,
             HeldReference::Always => true,
-            HeldReference::Readapting => self.readapting(),
+            HeldReference::Readapting => self.learner.adaptation().readapting(),
         }
     }
 
@@ -78,7 +72,7 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
             self.static_only = self.learning;
             self.learning = false;
         }
-        let count = if self.readapting() {
+        let count = if self.learner.adaptation().readapting() {
             ph.readapting_count
         } else {
             ph.count
@@ -93,17 +87,11 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
                     *t = if hi > lo { (*t + d).clamp(lo, hi) } else { *t };
                 }
             }
-            match held.take() {
-                Some(start) => self.pd_move_from(
-                    &start,
-                    &target,
-                    ph.move_seconds,
-                    ph.hold_seconds,
-                    0.0,
-                    limit,
-                )?,
-                None => self.pd_move(&target, ph.move_seconds, ph.hold_seconds, 0.0, limit)?,
-            }
+            let start = held
+                .take()
+                .unwrap_or_else(|| self.prev.q.as_slice().to_vec());
+            let (m, h) = (ph.move_seconds, ph.hold_seconds);
+            self.pd_move_from(&start, &target, m, h, 0.0, limit)?;
             self.learner.end_hold()?;
             held = self.held_reference().then_some(target);
         }
