@@ -152,8 +152,20 @@ impl Local {
         out: &mut [f64],
         tmp: &mut [f64],
     ) -> Result<()> {
-        self.rwr.mean_into(phi, out)?;
         self.ramp = self.ramp.saturating_add(1);
+        self.mean_held(phi, spread, out, tmp)
+    }
+
+    /// [`Local::mean_into`] without advancing the ramp: a neighbour's command where the
+    /// support is thin (`learner/nearest.rs`), which is not the controller's own command.
+    pub(crate) fn mean_held(
+        &self,
+        phi: &[f64],
+        spread: usize,
+        out: &mut [f64],
+        tmp: &mut [f64],
+    ) -> Result<()> {
+        self.rwr.mean_into(phi, out)?;
         let a = self.alpha(spread);
         let Some(from) = self.theta_from.as_ref().filter(|_| a < 1.0) else {
             return Ok(());

@@ -142,6 +142,14 @@ pub struct ControllerConfig {
     /// `κ = smoothstep(S / w0)`, so the learned part fades into `u0` where no trained field is
     /// near instead of switching. Default 0.05: one field at its own cutoff scale.
     pub prior_weight: f64,
+    /// Activation down to which the trained controllers nearest to a thinly supported state
+    /// still command (`learner/nearest.rs`; `docs/learner.md`, "Thin support"): where `κ < 1`
+    /// the share `1 − κ` goes to their blend, each evaluated at the state pulled into its
+    /// field's support, faded into `u0` as the nearest trained field's activation falls from
+    /// `partition.activation_cutoff` to this value. Default 1e-8 (about 6 kernel widths):
+    /// `u0`'s pull to rest would take the arm out of the trained region for good. 0: off (the
+    /// learned part fades into `u0` alone).
+    pub neighbour_cutoff: f64,
     /// Hindsight shrinkage `κ ∈ [0, 1]`: a sample's target `u − u0` loses the share `κ` of its
     /// part in the null space of `Â` — the same `ẍ` at a lower cost. 0 is the paper's plain
     /// relabelling. Default 1.
@@ -382,6 +390,7 @@ impl Default for ControllerConfig {
             trained_ess: 50.0,
             update_every: 25,
             prior_weight: 0.05,
+            neighbour_cutoff: 1e-8,
             reward_weighting: true,
             cost: CostKind::NullSpace,
             null_space_shrink: 1.0,

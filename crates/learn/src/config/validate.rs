@@ -125,6 +125,18 @@ impl LearnerConfig {
                 c.prior_weight
             )
         })?;
+        ensure(
+            c.neighbour_cutoff == 0.0
+                || (c.neighbour_cutoff > 0.0
+                    && c.neighbour_cutoff < self.partition.activation_cutoff),
+            || {
+                format!(
+                    "controllers.neighbour_cutoff {} must be 0 (off) or in (0, \
+                     partition.activation_cutoff = {})",
+                    c.neighbour_cutoff, self.partition.activation_cutoff
+                )
+            },
+        )?;
         ensure(finite_at_least(c.damping_bound, 0.0), || {
             format!(
                 "controllers.damping_bound {} must be finite and ≥ 0",

@@ -3,6 +3,7 @@
 //! where none is near, exploration on top, then the guards (non-finite blend, torque limits).
 
 use super::exploration::explore;
+use super::nearest::smoothstep;
 use super::nominal::nominal_into;
 use super::null_gravity::null_correction_into_z;
 use super::{Learner, State};
@@ -15,10 +16,11 @@ use rand::Rng;
 pub enum CommandSource {
     /// The blend of the trained local controllers (eq. 34).
     Learned,
-    /// No trained controller active above the cutoff: the blend of the nearest ones (any
-    /// activation above [`EXTRAPOLATION_CUTOFF`]).
+    /// Thin support (`S < w0`): the blend faded by `κ`, the rest from the nearest trained
+    /// controllers (`nearest.rs`) faded into `u0`.
     Extrapolated,
-    /// No trained controller anywhere near: the nominal `u0`.
+    /// No trained controller active, none above `controllers.neighbour_cutoff`: the nominal
+    /// `u0`.
     Fallback,
 }
 
@@ -31,6 +33,8 @@ struct Blend {
     sum_w: f64,
     sum_sigma: f64,
     source: CommandSource,
+    /// The nearest trained controllers' blend is in `ws.u_far`.
+    far: bool,
 }
 
 impl Learner {
@@ -114,7 +118,9 @@ impl Learner {
             sum_w += w;
             sum_sigma += w * local.rwr.sigma();
         }
-        if !(sum_w > 0.0) {
+        let far =
+            sum_w < self.cfg.controllers.prior_weight && self.nearest_blend(q, qd, xdd_ref)?;
+        if !(sum_w > 0.0) && !far {
             return Ok(None);
         }
         let source = if sum_w >= self.cfg.controllers.prior_weight {
@@ -126,6 +132,7 @@ impl Learner {
             sum_w,
             sum_sigma,
             source,
+            far,
         }))
     }
 
@@ -142,14 +149,26 @@ impl Learner {
         if blend.source == CommandSource::Extrapolated {
             self.stats.extrapolations += 1;
         }
-        let x = (blend.sum_w / self.cfg.controllers.prior_weight).min(1.0);
-        let kappa = x * x * (3.0 - 2.0 * x);
-        let sigma =
-            self.noise.gain * self.cfg.exploration.scale * kappa * blend.sum_sigma / blend.sum_w;
-        for v in u.iter_mut() {
-            *v *= kappa / blend.sum_w;
-        }
+        let kappa = smoothstep(blend.sum_w / self.cfg.controllers.prior_weight);
+        let sigma = if blend.sum_w > 0.0 {
+            self.noise.gain * self.cfg.exploration.scale * kappa * blend.sum_sigma / blend.sum_w
+        } else {
+            0.0
+        };
+        let scale = if blend.sum_w > 0.0 {
+            kappa / blend.sum_w
+        } else {
+            0.0
+        };
+        u.iter_mut().for_each(|v| *v *= scale);
         self.project_command(q, u);
+        // The neighbours' part after the projection: the projector appears with the first
+        // active field, and only the part it multiplies (`κ → 0` there) may meet it.
+        if blend.far {
+            for (v, f) in u.iter_mut().zip(&self.ws.u_far) {
+                *v += (1.0 - kappa) * f;
+            }
+        }
         if self.cfg.experimental.residual {
             let u0 = &mut self.ws.u0;
             nominal_into(
@@ -260,6 +279,7 @@ mod tests {
         let mut cfg = fixture::config();
         cfg.controllers.trained_ess = 1e8;
         cfg.controllers.command_projection = 0.0; // eq. 34 as it is (`projection.rs` tests it)
+        cfg.controllers.neighbour_cutoff = 0.0; // `u0` alone below w0 (`nearest_tests.rs`)
         let (mut learner, _, last) = fixture::ready(cfg, 200, 0);
         let (q, qd) = (last.q.as_slice().to_vec(), last.qd.as_slice().to_vec());
         let xdd = [0.3, -0.2];

@@ -44,6 +44,9 @@ mod metric;
 #[cfg(test)]
 mod metric_tests;
 mod models;
+mod nearest;
+#[cfg(test)]
+mod nearest_tests;
 mod nominal;
 mod null_gravity;
 #[cfg(test)]

@@ -33,6 +33,12 @@ pub struct LearnerStats {
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Scratch {
     pub acts: Vec<Activation>,
+    /// The activations of the nearest-controller query and its blend (`nearest.rs`).
+    pub acts_far: Vec<Activation>,
+    pub u_far: Vec<f64>,
+    /// A state pulled into a neighbour's support (`nearest.rs`).
+    pub q_pull: Vec<f64>,
+    pub qd_pull: Vec<f64>,
     pub events: Vec<RfEvent>,
     /// Receptive fields to prune.
     pub stale: Vec<RfId>,
@@ -68,6 +74,10 @@ impl Scratch {
     pub fn new(n: usize, m: usize, p: usize, pd: usize) -> Self {
         Self {
             acts: Vec::with_capacity(4096),
+            acts_far: Vec::with_capacity(4096),
+            u_far: vec![0.0; n],
+            q_pull: vec![0.0; n],
+            qd_pull: vec![0.0; n],
             events: Vec::with_capacity(16),
             stale: Vec::with_capacity(4096),
             phi: vec![0.0; p],
