@@ -28,4 +28,26 @@ fn learned_commands_do_not_allocate() {
             .unwrap();
     }
     assert_eq!(osrl_testkit::allocations() - before, 0);
+    // Out of the trained fields: thin support (the nearest controllers, `nearest.rs`), then `u0`.
+    let (mut sources, mut q) = (Vec::with_capacity(400), s.q_start.clone());
+    let before = osrl_testkit::allocations();
+    for k in 0..400 {
+        for (v, v0) in q.iter_mut().zip(&s.q_start) {
+            *v = v0 + 0.005 * k as f64;
+        }
+        let src = learner
+            .command::<rand_chacha::ChaCha8Rng>(&q, &qd, &[0.1, 0.2], None, &mut u)
+            .unwrap();
+        if sources.last() != Some(&src) {
+            sources.push(src);
+        }
+    }
+    let after = osrl_testkit::allocations();
+    assert!(
+        sources.contains(&osrl_learn::CommandSource::Extrapolated)
+            && sources.last() == Some(&osrl_learn::CommandSource::Fallback),
+        "{sources:?}"
+    );
+    assert!(sources.len() <= 8, "{sources:?}");
+    assert_eq!(after - before, 0);
 }
