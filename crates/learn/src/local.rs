@@ -14,6 +14,14 @@ pub(crate) fn confidence(ess: f64, trained_ess: f64) -> f64 {
     (ess / trained_ess - 0.5).clamp(0.0, 1.0)
 }
 
+/// `smoothstep(x) = x² (3 − 2x)` of `x` clamped to `[0, 1]`: the fades of the command's blend,
+/// of its neighbours (`learner/nearest.rs`), of the load correction and of the driver's
+/// hand-overs.
+pub(crate) fn smoothstep(x: f64) -> f64 {
+    let x = x.clamp(0.0, 1.0);
+    x * x * (3.0 - 2.0 * x)
+}
+
 /// The weight `w̃ = c (w − cutoff)` of a controller of confidence `c` ([`confidence`] of its
 /// `ess`) whose field is active at `w` in the command's blend (eq. 34, `learner/command.rs`):
 /// 0 where the field enters at the cutoff and for an untrained controller.

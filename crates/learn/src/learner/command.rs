@@ -3,12 +3,11 @@
 //! where none is near, exploration on top, then the guards (non-finite blend, torque limits).
 
 use super::exploration::explore;
-use super::nearest::smoothstep;
 use super::nominal::nominal_into;
 use super::null_gravity::null_correction_into_z;
 use super::{Learner, State};
 use crate::error::{LearnError, Result};
-use crate::local::blend_weight;
+use crate::local::{blend_weight, smoothstep};
 use rand::Rng;
 
 /// What produced a command.
@@ -150,15 +149,15 @@ impl Learner {
             self.stats.extrapolations += 1;
         }
         let kappa = smoothstep(blend.sum_w / self.cfg.controllers.prior_weight);
-        let sigma = if blend.sum_w > 0.0 {
-            self.noise.gain * self.cfg.exploration.scale * kappa * blend.sum_sigma / blend.sum_w
+        // `S = 0` where only the neighbours command: no blend to scale, no exploration.
+        let (sigma, scale) = if blend.sum_w > 0.0 {
+            let gain = self.noise.gain * self.cfg.exploration.scale;
+            (
+                gain * kappa * blend.sum_sigma / blend.sum_w,
+                kappa / blend.sum_w,
+            )
         } else {
-            0.0
-        };
-        let scale = if blend.sum_w > 0.0 {
-            kappa / blend.sum_w
-        } else {
-            0.0
+            (0.0, 0.0)
         };
         u.iter_mut().for_each(|v| *v *= scale);
         self.project_command(q, u);

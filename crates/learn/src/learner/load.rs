@@ -20,7 +20,7 @@
 use super::{Features, Models};
 use crate::config::LearnerConfig;
 use crate::error::Result;
-use crate::local::confidence;
+use crate::local::{confidence, smoothstep};
 use lwpr::{Activation, RfId};
 use osrl_dynamics::Measurement;
 use serde::{Deserialize, Serialize};
@@ -64,8 +64,7 @@ pub(crate) fn policy_at(
     if !(sum_w > 0.0) {
         return Ok(false);
     }
-    let x = (sum_w / cfg.controllers.prior_weight).min(1.0);
-    let kappa = x * x * (3.0 - 2.0 * x);
+    let kappa = smoothstep(sum_w / cfg.controllers.prior_weight);
     out.iter_mut().for_each(|v| *v *= kappa / sum_w);
     Ok(true)
 }

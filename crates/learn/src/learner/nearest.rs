@@ -22,16 +22,10 @@
 
 use super::{Learner, State};
 use crate::error::Result;
-use crate::local::confidence;
+use crate::local::{confidence, smoothstep};
 
 /// Relative taper of the neighbours' weights: `v_i = c_i w_i / max − NEIGHBOUR_TAPER`.
 pub(crate) const NEIGHBOUR_TAPER: f64 = 0.05;
-
-/// `smoothstep(x)` on `[0, 1]`.
-pub(crate) fn smoothstep(x: f64) -> f64 {
-    let x = x.clamp(0.0, 1.0);
-    x * x * (3.0 - 2.0 * x)
-}
 
 impl Learner {
     /// `λ ū_far` (module doc) at `(q, q̇)` for `xdd_ref` into `ws.u_far`; `false` (and

@@ -3,8 +3,8 @@
 //! support, faded by `λ`; `u0` alone beyond `neighbour_cutoff`.
 
 use super::fixture::{self, one_trained_field};
-use super::nearest::smoothstep;
 use super::CommandSource;
+use crate::local::smoothstep;
 
 /// The command at `(q, q̇)` without exploration, and its source.
 fn command(learner: &mut crate::Learner, q: &[f64], qd: &[f64]) -> ([f64; 3], CommandSource) {

@@ -340,8 +340,7 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
         if self.fade_left == 0 {
             return;
         }
-        let x = 1.0 - self.fade_left as f64 / self.fade_len as f64;
-        let a = x * x * (3.0 - 2.0 * x);
+        let a = crate::local::smoothstep(1.0 - self.fade_left as f64 / self.fade_len as f64);
         for (u, f) in self.u.iter_mut().zip(&self.fade_from) {
             *u = (1.0 - a) * f + a * *u;
         }
