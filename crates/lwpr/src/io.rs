@@ -73,6 +73,9 @@ impl Lwpr {
         }
         let mut m: Lwpr = postcard::from_bytes(payload).map_err(|e| fmt(e.to_string()))?;
         m.check_consistent().map_err(fmt)?;
+        for s in &mut m.subs {
+            s.rebuild_heads(&m.p);
+        }
         m.ws = Scratch::new(&m.p, m.subs.iter().map(|s| s.rfs.len()).max().unwrap_or(0));
         m.events = Vec::with_capacity(64);
         Ok(m)

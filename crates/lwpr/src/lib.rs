@@ -8,6 +8,7 @@ pub mod datasets;
 mod distance;
 mod error;
 mod fast;
+mod head;
 mod io;
 mod model;
 mod norm;

@@ -5,6 +5,7 @@
 //! [`SubModel`] (structure of arrays) so the activation pass over all RFs streams through memory;
 //! everything else an RF owns is in [`Rf`] and, per output it regresses, in [`Pls`].
 
+use crate::head::{self, Head};
 use crate::params::Params;
 use crate::pls::Pls;
 use serde::{Deserialize, Serialize};
@@ -76,6 +77,10 @@ pub(crate) struct SubModel {
     pub ms: Vec<f64>,
     /// `D = MᵀM` per RF, `n_rf × mlen` (diagonal, or full symmetric).
     pub ds: Vec<f64>,
+    /// Per RF, the first entries of its rows of `centers` and `ds` where the model keeps heads
+    /// (`head::in_use`), else empty; rebuilt on loading.
+    #[serde(skip)]
+    pub heads: Vec<Head>,
 }
 
 impl SubModel {
@@ -86,6 +91,7 @@ impl SubModel {
             centers: Vec::new(),
             ms: Vec::new(),
             ds: Vec::new(),
+            heads: Vec::new(),
         }
     }
 
@@ -124,6 +130,9 @@ impl SubModel {
         self.centers.extend_from_slice(c);
         self.ms.extend_from_slice(&m);
         self.ds.extend_from_slice(&d);
+        if head::in_use(p) {
+            self.heads.push(Head::of(c, &d));
+        }
         self.rfs.push(Rf {
             id,
             alpha,
@@ -150,6 +159,32 @@ impl SubModel {
                 v.copy_within(last * l..(last + 1) * l, i * l);
             }
             v.truncate(last * l);
+        }
+        if head::in_use(p) {
+            self.heads.swap_remove(i);
+        }
+    }
+
+    /// Copies RF `i`'s rows of `centers` and `ds` into its head, after its metric changed.
+    #[inline(always)]
+    pub fn sync_head(&mut self, p: &Params, i: usize) {
+        if head::in_use(p) {
+            let (nk, ml) = (p.nk(), p.mlen());
+            let (c, d) = (
+                &self.centers[i * nk..(i + 1) * nk],
+                &self.ds[i * ml..(i + 1) * ml],
+            );
+            self.heads[i] = Head::of(c, d);
+        }
+    }
+
+    /// Builds every RF's head from `centers` and `ds` (after loading).
+    pub fn rebuild_heads(&mut self, p: &Params) {
+        self.heads.clear();
+        if head::in_use(p) {
+            let (nk, ml) = (p.nk(), p.mlen());
+            let rows = self.centers.chunks_exact(nk).zip(self.ds.chunks_exact(ml));
+            self.heads.extend(rows.map(|(c, d)| Head::of(c, d)));
         }
     }
 

@@ -132,6 +132,7 @@ fn update_group_2d<const L: usize>(
         centers,
         ms,
         ds,
+        ..
     } = sub;
     let Ok(mut rf) = rfs.get_disjoint_mut(ii) else {
         unreachable!("the active RFs are distinct")

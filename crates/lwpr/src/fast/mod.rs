@@ -120,6 +120,7 @@ impl<const K: usize, const R: usize, const AVX: bool, const F: u8> Stages for Fa
     const NK: usize = K;
     const NR: usize = R;
     const AVX: bool = AVX;
+    const HEADS: bool = true;
 
     #[inline(always)]
     fn activations(p: &Params, sub: &SubModel, ws: &mut Scratch) -> Top2 {

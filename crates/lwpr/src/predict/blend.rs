@@ -4,6 +4,7 @@
 //! compute a plain prediction's sums (the fast dispatch, `fast/mod.rs`, chooses them).
 
 use crate::distance::quad;
+use crate::head;
 use crate::numeric::dot;
 use crate::params::Params;
 use crate::pls::{project, Pls};
@@ -92,12 +93,18 @@ pub(crate) fn sub_sums<S: Stages>(
         centers,
         ms,
         ds,
+        heads,
     } = sub;
     let kern = if diag { &*ds } else { &*ms };
     let mut sum_w = 0.0;
     let rf_chunks = centers.chunks_exact(nk).zip(kern.chunks_exact(ml));
+    // Where the model keeps heads, the RFs they put beyond `qb` are not measured (same sums).
+    let x32 = (S::HEADS && head::in_use(p)).then(|| head::input(&ws.xk[..nk]));
     for (i, (rf, (c, md))) in rfs.iter_mut().zip(rf_chunks).enumerate() {
         if !rf.trustworthy {
+            continue;
+        }
+        if x32.is_some_and(|x32| head::lower_bound(&heads[i], &x32) >= qb) {
             continue;
         }
         let q = quad(S::AVX, diag, c, md, &ws.xk[..nk], &mut ws.met.dx, qb);

@@ -80,6 +80,7 @@ fn sub_everywhere(p: &Params, sub: &mut SubModel, ws: &mut Scratch, o0: usize) -
         centers,
         ms,
         ds,
+        ..
     } = sub;
     let kern = if diag { &*ds } else { &*ms };
     // Pass 1: the nearest RF's ln w.

@@ -2,6 +2,7 @@
 //! cutoff of every RF of one sub-model at an input, trustworthy or not.
 
 use crate::distance::quad;
+use crate::head;
 use crate::params::Params;
 use crate::rf::{Activation, RfId, SubModel};
 use crate::scratch::Scratch;
@@ -25,7 +26,12 @@ pub(crate) fn activations_core<const NK: usize, const AVX: bool>(
     let qb = p.q_bound(cutoff);
     out.clear();
     let rf_chunks = s.centers.chunks_exact(nk).zip(kern.chunks_exact(ml));
-    for (rf, (c, md)) in s.rfs.iter().zip(rf_chunks) {
+    // Where the model keeps heads, the RFs they put beyond `qb` are not measured (same result).
+    let x32 = head::in_use(p).then(|| head::input(&ws.xk[..nk]));
+    for (i, (rf, (c, md))) in s.rfs.iter().zip(rf_chunks).enumerate() {
+        if x32.is_some_and(|x32| head::lower_bound(&s.heads[i], &x32) >= qb) {
+            continue;
+        }
         let q = quad(AVX, diag, c, md, &ws.xk[..nk], &mut ws.met.dx, qb);
         if q < qb {
             let w = p.kernel(q).0;

@@ -47,6 +47,7 @@ impl<S: Stages> Stages for Counting<S> {
     const NK: usize = S::NK;
     const NR: usize = S::NR;
     const AVX: bool = S::AVX;
+    const HEADS: bool = S::HEADS;
 
     fn activations(
         p: &Params,

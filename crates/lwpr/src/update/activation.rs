@@ -3,6 +3,7 @@
 //! nearest, for the add and prune tests of step 5.
 
 use crate::distance::quad;
+use crate::head;
 use crate::params::{Params, W_UPDATE};
 use crate::rf::SubModel;
 use crate::scratch::Scratch;
@@ -10,9 +11,24 @@ use crate::scratch::Scratch;
 /// The activation pass: queues in `ws.active` every RF whose activation exceeds the update
 /// threshold, with the kernel's derivatives, and returns the two nearest RFs. `NK > 0` fixes
 /// the kernel dimension at compile time (0: taken from `p`); `AVX` is set only after the
-/// run-time check of the CPU (`distance::quad`).
+/// run-time check of the CPU (`distance::quad`). Where the model keeps heads (`head.rs`) by
+/// [`pass_heads`], else by [`pass_rows`]: the same results.
 #[inline(always)]
 pub(crate) fn pass<const NK: usize, const AVX: bool>(
+    p: &Params,
+    sub: &SubModel,
+    ws: &mut Scratch,
+) -> Top2 {
+    if head::in_use(p) {
+        pass_heads(p, sub, ws)
+    } else {
+        pass_rows::<NK, AVX>(p, sub, ws)
+    }
+}
+
+/// [`pass`] from every RF's rows of the centres and metrics.
+#[inline(always)]
+pub(crate) fn pass_rows<const NK: usize, const AVX: bool>(
     p: &Params,
     sub: &SubModel,
     ws: &mut Scratch,
@@ -45,6 +61,30 @@ pub(crate) fn pass<const NK: usize, const AVX: bool>(
             &mut ws.met.dx,
             qb.max(top.q2),
         );
+        top.visit(p, qb, i, q, &mut ws.active);
+    }
+    top
+}
+
+/// [`pass`] over the heads (`head.rs`; a diagonal metric over many dimensions): an RF whose
+/// head's lower bound of `q` reaches the pass's bound (it would be neither updated nor among
+/// the two nearest) is skipped; the others are measured from their rows as by [`pass_rows`].
+/// The same results as [`pass_rows`], tested against it (`tests/heads.rs`).
+#[inline(always)]
+pub(crate) fn pass_heads(p: &Params, sub: &SubModel, ws: &mut Scratch) -> Top2 {
+    let (nk, qb) = (p.nk(), ws.qb_update);
+    let mut top = Top2::new();
+    ws.active.clear();
+    debug_assert_eq!(sub.heads.len(), sub.rfs.len());
+    let x = &ws.xk[..nk];
+    let x32 = head::input(x);
+    let rows = sub.centers.chunks_exact(nk).zip(sub.ds.chunks_exact(nk));
+    for (i, (h, (c, d))) in sub.heads.iter().zip(rows).enumerate() {
+        let bound = qb.max(top.q2);
+        if head::lower_bound(h, &x32) >= bound {
+            continue;
+        }
+        let q = quad(false, true, c, d, x, &mut [], bound);
         top.visit(p, qb, i, q, &mut ws.active);
     }
     top

@@ -75,10 +75,12 @@ pub(crate) fn lines<T>(v: &[T]) {
     {
         use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
         let (start, bytes) = (v.as_ptr().cast::<i8>(), std::mem::size_of_val(v));
-        for off in (0..bytes).step_by(64) {
+        let mut off = 0;
+        while off < bytes {
             // SAFETY: a prefetch never faults; the address lies inside `v` (SSE is part of
             // the x86-64 baseline).
             unsafe { _mm_prefetch::<_MM_HINT_T0>(start.add(off)) };
+            off += 64;
         }
     }
     #[cfg(not(target_arch = "x86_64"))]

@@ -1,13 +1,13 @@
 //! The reference stages (tests only): the update and the plain prediction computed by the code
-//! of `update/` and `predict/blend.rs` alone, with the dimensions taken from the model, to
-//! compare the fast path with.
+//! of `update/` and `predict/blend.rs` alone, with the dimensions taken from the model and the
+//! activation pass from the rows of every RF (no heads), to compare the fast path with.
 
 use crate::params::Params;
 use crate::pls::Pls;
 use crate::predict::blend::{sub_sums, Want};
 use crate::rf::SubModel;
 use crate::scratch::Scratch;
-use crate::update::activation::{pass, Top2};
+use crate::update::activation::{pass_rows, Top2};
 use crate::update::metric::{MetricAcc, MetricScratch};
 use crate::update::metric_step::reference_step;
 use crate::update::regression::PlsScratch;
@@ -22,10 +22,11 @@ impl Stages for Reference {
     const NK: usize = 0;
     const NR: usize = 0;
     const AVX: bool = false;
+    const HEADS: bool = false;
 
     #[inline(always)]
     fn activations(p: &Params, sub: &SubModel, ws: &mut Scratch) -> Top2 {
-        pass::<0, false>(p, sub, ws)
+        pass_rows::<0, false>(p, sub, ws)
     }
 
     #[inline(always)]

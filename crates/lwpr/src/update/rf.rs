@@ -133,6 +133,7 @@ pub(crate) fn update_rf<S: Stages>(
     } else {
         reference_step(nk, p, s, &mut ws.met);
     }
+    sub.sync_head(p, i);
     // A non-finite element of `M` (or an overflow of `D = MᵀM`) shows on the diagonal of `D`,
     // a sum of squares of `M`'s column.
     let finite = (chk + sub.trace_d(p, i)).is_finite();

@@ -22,6 +22,9 @@ pub(crate) trait Stages {
     const NR: usize;
     /// Whether the code runs on AVX2 (set only after the run-time check of the CPU).
     const AVX: bool;
+    /// Whether the activation passes skip the RFs that their heads exclude (`head.rs`), where
+    /// the model keeps heads.
+    const HEADS: bool;
 
     /// Step 2: queues the RFs to update in `ws.active`, with the kernel's derivatives, and
     /// returns the two nearest (`update/activation.rs`).
