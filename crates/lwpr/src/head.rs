@@ -6,7 +6,8 @@
 //! SARCOS data) their centres and metrics stream from beyond the core's caches. A head gives a
 //! lower bound of the RF's distance `q` ([`lower_bound`]); where the bound already reaches the
 //! pass's cutoff, the RF cannot matter and its rows are not read. The heads change no value:
-//! every RF they do not exclude is measured from its rows as before (`docs/lwpr.md`, "The fast path").
+//! every RF they do not exclude is measured from its rows as before (`docs/lwpr.md`, "The
+//! fast path").
 
 use crate::params::Params;
 
