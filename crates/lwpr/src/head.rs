@@ -15,7 +15,7 @@ use crate::params::Params;
 pub(crate) const HEAD: usize = 24;
 
 /// One RF's first [`HEAD`] centre coordinates `c` and metric diagonals `d`, rounded to single
-/// precision (two cache lines); zeros beyond the kernel dimension.
+/// precision (three cache lines); zeros beyond the kernel dimension.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[repr(C, align(64))]
 pub(crate) struct Head {
@@ -41,6 +41,13 @@ impl Head {
         }
         h
     }
+}
+
+/// The input's head where the model keeps heads ([`in_use`]), for a pass over them; else
+/// `None` (the pass reads every RF's rows).
+#[inline(always)]
+pub(crate) fn probe(p: &Params, x: &[f64]) -> Option<[f32; HEAD]> {
+    in_use(p).then(|| input(x))
 }
 
 /// An input's first [`HEAD`] coordinates rounded as a head's (zeros beyond its length).

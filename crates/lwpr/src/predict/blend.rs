@@ -99,7 +99,11 @@ pub(crate) fn sub_sums<S: Stages>(
     let mut sum_w = 0.0;
     let rf_chunks = centers.chunks_exact(nk).zip(kern.chunks_exact(ml));
     // Where the model keeps heads, the RFs they put beyond `qb` are not measured (same sums).
-    let x32 = (S::HEADS && head::in_use(p)).then(|| head::input(&ws.xk[..nk]));
+    let x32 = if S::HEADS {
+        head::probe(p, &ws.xk[..nk])
+    } else {
+        None
+    };
     for (i, (rf, (c, md))) in rfs.iter_mut().zip(rf_chunks).enumerate() {
         if !rf.trustworthy {
             continue;

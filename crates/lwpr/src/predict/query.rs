@@ -27,7 +27,7 @@ pub(crate) fn activations_core<const NK: usize, const AVX: bool>(
     out.clear();
     let rf_chunks = s.centers.chunks_exact(nk).zip(kern.chunks_exact(ml));
     // Where the model keeps heads, the RFs they put beyond `qb` are not measured (same result).
-    let x32 = head::in_use(p).then(|| head::input(&ws.xk[..nk]));
+    let x32 = head::probe(p, &ws.xk[..nk]);
     for (i, (rf, (c, md))) in s.rfs.iter().zip(rf_chunks).enumerate() {
         if x32.is_some_and(|x32| head::lower_bound(&s.heads[i], &x32) >= qb) {
             continue;

@@ -127,6 +127,16 @@ fn model() -> Lwpr {
     Lwpr::new(21, 2, &cfg).unwrap()
 }
 
+/// [`model`] trained on `n` samples of the path of `phase`, `dt` apart.
+fn trained(phase: &[f64], n: usize, dt: f64) -> Lwpr {
+    let mut m = model();
+    for k in 0..n {
+        let (x, y) = sample(dt * k as f64, phase);
+        m.update(&x, &y).unwrap();
+    }
+    m
+}
+
 fn top_bits(t: &Top2) -> [u64; 6] {
     let w = |w: Option<f64>| w.map_or(u64::MAX, f64::to_bits);
     [
@@ -205,12 +215,7 @@ fn the_pass_over_heads_gives_the_pass_over_rows() {
 
 #[test]
 fn loading_rebuilds_the_heads() {
-    let mut m = model();
-    let phase = [0.5; 21];
-    for k in 0..400 {
-        let (x, y) = sample(0.07 * k as f64, &phase);
-        m.update(&x, &y).unwrap();
-    }
+    let m = trained(&[0.5; 21], 400, 0.07);
     assert!(m
         .subs
         .iter()
@@ -223,12 +228,8 @@ fn loading_rebuilds_the_heads() {
 
 #[test]
 fn the_activation_query_skips_only_what_the_rows_put_beyond_the_cutoff() {
-    let mut m = model();
     let phase = [1.5; 21];
-    for k in 0..600 {
-        let (x, y) = sample(0.05 * k as f64, &phase);
-        m.update(&x, &y).unwrap();
-    }
+    let mut m = trained(&phase, 600, 0.05);
     let mut out = Vec::new();
     let (mut listed, mut excluded) = (0, 0);
     for k in 0..200 {
