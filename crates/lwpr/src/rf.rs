@@ -5,7 +5,7 @@
 //! [`SubModel`] (structure of arrays) so the activation pass over all RFs streams through memory;
 //! everything else an RF owns is in [`Rf`] and, per output it regresses, in [`Pls`].
 
-use crate::head::{self, Head};
+use crate::head::{self, Heads};
 use crate::params::Params;
 use crate::pls::Pls;
 use serde::{Deserialize, Serialize};
@@ -80,7 +80,7 @@ pub(crate) struct SubModel {
     /// Per RF, the first entries of its rows of `centers` and `ds` where the model keeps heads
     /// (`head::in_use`), else empty; rebuilt on loading.
     #[serde(skip)]
-    pub heads: Vec<Head>,
+    pub heads: Heads,
 }
 
 impl SubModel {
@@ -91,7 +91,7 @@ impl SubModel {
             centers: Vec::new(),
             ms: Vec::new(),
             ds: Vec::new(),
-            heads: Vec::new(),
+            heads: Heads::default(),
         }
     }
 
@@ -131,7 +131,7 @@ impl SubModel {
         self.ms.extend_from_slice(&m);
         self.ds.extend_from_slice(&d);
         if head::in_use(p) {
-            self.heads.push(Head::of(c, &d));
+            self.heads.push(c, &d);
         }
         self.rfs.push(Rf {
             id,
@@ -174,7 +174,7 @@ impl SubModel {
                 &self.centers[i * nk..(i + 1) * nk],
                 &self.ds[i * ml..(i + 1) * ml],
             );
-            self.heads[i] = Head::of(c, d);
+            self.heads.set(i, c, d);
         }
     }
 
@@ -184,7 +184,9 @@ impl SubModel {
         if head::in_use(p) {
             let (nk, ml) = (p.nk(), p.mlen());
             let rows = self.centers.chunks_exact(nk).zip(self.ds.chunks_exact(ml));
-            self.heads.extend(rows.map(|(c, d)| Head::of(c, d)));
+            for (c, d) in rows {
+                self.heads.push(c, d);
+            }
         }
     }
 

@@ -22,6 +22,7 @@
 //! | four-lane full-metric step | full metric, 5 dimensions or more | [`wide`] |
 //! | its partial vectors, `max \|M\|` and row sums in AVX2 registers | the four-lane step on AVX2 | [`lanes_avx`] |
 //! | distance rows in one AVX2 register | full metric, 5 dimensions or more: activation pass, predictions, activation queries | [`dot`] |
+//! | the heads' bounds of eight RFs in one AVX2 register | diagonal metric over more than 8 dimensions, on AVX2 | [`head_avx`] |
 //!
 //! Tests run single specialisations off through the flags `F` of [`Fast`] (production runs
 //! [`ALL`]) and compare with the reference.
@@ -29,6 +30,8 @@
 pub(crate) mod dot;
 pub(crate) mod fused;
 pub(crate) mod group;
+#[cfg(target_arch = "x86_64")]
+pub(crate) mod head_avx;
 pub(crate) mod lanes;
 #[cfg(target_arch = "x86_64")]
 pub(crate) mod lanes_avx;

@@ -4,7 +4,6 @@
 //! compute a plain prediction's sums (the fast dispatch, `fast/mod.rs`, chooses them).
 
 use crate::distance::quad;
-use crate::head;
 use crate::numeric::dot;
 use crate::params::Params;
 use crate::pls::{project, Pls};
@@ -99,16 +98,17 @@ pub(crate) fn sub_sums<S: Stages>(
     let mut sum_w = 0.0;
     let rf_chunks = centers.chunks_exact(nk).zip(kern.chunks_exact(ml));
     // Where the model keeps heads, the RFs they put beyond `qb` are not measured (same sums).
-    let x32 = if S::HEADS {
-        head::probe(p, &ws.xk[..nk])
+    let mut heads = if S::HEADS {
+        heads.walk(S::AVX, p, &ws.xk[..nk])
     } else {
         None
     };
     for (i, (rf, (c, md))) in rfs.iter_mut().zip(rf_chunks).enumerate() {
-        if !rf.trustworthy {
+        // Every RF's bound in turn (the walk computes a block's at its first RF).
+        if heads.as_mut().is_some_and(|h| h.beyond(i, qb)) {
             continue;
         }
-        if x32.is_some_and(|x32| head::lower_bound(&heads[i], &x32) >= qb) {
+        if !rf.trustworthy {
             continue;
         }
         let q = quad(S::AVX, diag, c, md, &ws.xk[..nk], &mut ws.met.dx, qb);

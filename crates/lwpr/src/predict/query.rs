@@ -2,7 +2,6 @@
 //! cutoff of every RF of one sub-model at an input, trustworthy or not.
 
 use crate::distance::quad;
-use crate::head;
 use crate::params::Params;
 use crate::rf::{Activation, RfId, SubModel};
 use crate::scratch::Scratch;
@@ -27,9 +26,9 @@ pub(crate) fn activations_core<const NK: usize, const AVX: bool>(
     out.clear();
     let rf_chunks = s.centers.chunks_exact(nk).zip(kern.chunks_exact(ml));
     // Where the model keeps heads, the RFs they put beyond `qb` are not measured (same result).
-    let x32 = head::probe(p, &ws.xk[..nk]);
+    let mut heads = s.heads.walk(AVX, p, &ws.xk[..nk]);
     for (i, (rf, (c, md))) in s.rfs.iter().zip(rf_chunks).enumerate() {
-        if x32.is_some_and(|x32| head::lower_bound(&s.heads[i], &x32) >= qb) {
+        if heads.as_mut().is_some_and(|h| h.beyond(i, qb)) {
             continue;
         }
         let q = quad(AVX, diag, c, md, &ws.xk[..nk], &mut ws.met.dx, qb);

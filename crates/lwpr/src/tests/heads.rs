@@ -7,8 +7,11 @@
 use super::activation::draw;
 use crate::config::{LwprConfig, MetricInit};
 use crate::distance::quad;
-use crate::head::{self, Head};
+use crate::head::{self, Heads};
 use crate::model::Lwpr;
+use crate::params::Params;
+use crate::rf::SubModel;
+use crate::scratch::Scratch;
 use crate::update::activation::{pass_heads, pass_rows, Top2};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -32,7 +35,9 @@ fn extreme(rng: &mut ChaCha8Rng) -> f64 {
 /// `q` in double precision, as the update computes it, and from the head.
 fn both(c: &[f64], d: &[f64], x: &[f64]) -> (f64, f64) {
     let q = quad(false, true, c, d, x, &mut [], f64::INFINITY);
-    let lb = head::lower_bound(&Head::of(c, d), &head::input(x));
+    let mut h = Heads::default();
+    h.push(c, d);
+    let lb = h.bound(0, &h.probe(x));
     (q, lb)
 }
 
@@ -100,6 +105,36 @@ fn the_head_bound_lies_below_q() {
     );
 }
 
+#[test]
+fn the_avx2_bounds_are_the_portable_bounds() {
+    if !crate::fast::has_avx2() {
+        eprintln!("no AVX2 on this CPU: nothing to compare");
+        return;
+    }
+    let mut rng = ChaCha8Rng::seed_from_u64(12);
+    for trial in 0..400 {
+        let nk = [9, 16, 21, 24, 33][trial % 5];
+        let mut h = Heads::default();
+        for _ in 0..rng.random_range(1..30) {
+            let c: Vec<f64> = (0..nk).map(|_| extreme(&mut rng)).collect();
+            let d: Vec<f64> = (0..nk).map(|_| extreme(&mut rng).abs()).collect();
+            h.push(&c, &d);
+        }
+        for _ in 0..20 {
+            let x: Vec<f64> = (0..nk).map(|_| extreme(&mut rng)).collect();
+            let pr = h.probe(&x);
+            for b in 0..h.blocks() {
+                let bits = |v: [f64; head::LANES]| v.map(f64::to_bits);
+                assert_eq!(
+                    bits(h.bounds(true, b, &pr)),
+                    bits(h.bounds(false, b, &pr)),
+                    "nk {nk}, block {b}"
+                );
+            }
+        }
+    }
+}
+
 /// A smooth path through 21 dimensions (as a robot's joint states), two outputs.
 fn sample(t: f64, phase: &[f64]) -> (Vec<f64>, [f64; 2]) {
     let x: Vec<f64> = (0..21)
@@ -137,6 +172,11 @@ fn trained(phase: &[f64], n: usize, dt: f64) -> Lwpr {
     m
 }
 
+#[target_feature(enable = "avx2")]
+unsafe fn pass_heads_avx2(p: &Params, sub: &SubModel, ws: &mut Scratch) -> Top2 {
+    pass_heads::<true>(p, sub, ws)
+}
+
 fn top_bits(t: &Top2) -> [u64; 6] {
     let w = |w: Option<f64>| w.map_or(u64::MAX, f64::to_bits);
     [
@@ -162,7 +202,13 @@ fn the_pass_over_heads_gives_the_pass_over_rows() {
         for sub in subs.iter() {
             let top_r = pass_rows::<0, false>(p, sub, ws);
             let act_r = ws.active.clone();
-            let top_h = pass_heads(p, sub, ws);
+            if crate::fast::has_avx2() {
+                // SAFETY: the CPU has AVX2.
+                let top_a = unsafe { pass_heads_avx2(p, sub, ws) };
+                assert_eq!(top_bits(&top_a), top_bits(&top_r), "sample {k}: AVX2");
+                assert_eq!(ws.active, act_r, "sample {k}: AVX2's RFs to update");
+            }
+            let top_h = pass_heads::<false>(p, sub, ws);
             assert_eq!(
                 top_bits(&top_h),
                 top_bits(&top_r),
@@ -178,9 +224,9 @@ fn the_pass_over_heads_gives_the_pass_over_rows() {
                 bits(&act_r),
                 "sample {k}: the RFs to update"
             );
-            let (x32, qb) = (head::input(&ws.xk[..21]), ws.qb_update);
-            for h in &sub.heads {
-                if head::lower_bound(h, &x32) >= qb {
+            let (pr, qb) = (sub.heads.probe(&ws.xk[..21]), ws.qb_update);
+            for i in 0..sub.heads.len() {
+                if sub.heads.bound(i, &pr) >= qb {
                     excluded += 1;
                 } else {
                     measured += 1;
@@ -240,7 +286,7 @@ fn the_activation_query_skips_only_what_the_rows_put_beyond_the_cutoff() {
             let Lwpr { p, subs, ws, .. } = &mut m;
             ws.load_x(p, &x);
             let sub = &subs[s];
-            let x32 = head::input(&ws.xk[..21]);
+            let pr = sub.heads.probe(&ws.xk[..21]);
             let rows = sub.centers.chunks_exact(21).zip(sub.ds.chunks_exact(21));
             let want: Vec<(u64, u64)> = rows
                 .zip(&sub.rfs)
@@ -263,10 +309,8 @@ fn the_activation_query_skips_only_what_the_rows_put_beyond_the_cutoff() {
             assert_eq!(got, want, "query {k}, sub-model {s}, cutoff {cutoff}");
             listed += got.len();
             let qb = p.q_bound(cutoff);
-            excluded += sub
-                .heads
-                .iter()
-                .filter(|h| head::lower_bound(h, &x32) >= qb)
+            excluded += (0..sub.heads.len())
+                .filter(|&i| sub.heads.bound(i, &pr) >= qb)
                 .count();
         }
     }
@@ -275,3 +319,4 @@ fn the_activation_query_skips_only_what_the_rows_put_beyond_the_cutoff() {
         "{listed} listed, {excluded} excluded by the heads"
     );
 }
+

@@ -3,7 +3,7 @@
 //! nearest, for the add and prune tests of step 5.
 
 use crate::distance::quad;
-use crate::head;
+use crate::head::{self, LANES};
 use crate::params::{Params, W_UPDATE};
 use crate::rf::SubModel;
 use crate::scratch::Scratch;
@@ -20,7 +20,7 @@ pub(crate) fn pass<const NK: usize, const AVX: bool>(
     ws: &mut Scratch,
 ) -> Top2 {
     if head::in_use(p) {
-        pass_heads(p, sub, ws)
+        pass_heads::<AVX>(p, sub, ws)
     } else {
         pass_rows::<NK, AVX>(p, sub, ws)
     }
@@ -71,21 +71,26 @@ pub(crate) fn pass_rows<const NK: usize, const AVX: bool>(
 /// the two nearest) is skipped; the others are measured from their rows as by [`pass_rows`].
 /// The same results as [`pass_rows`], tested against it (`tests/heads.rs`).
 #[inline(always)]
-pub(crate) fn pass_heads(p: &Params, sub: &SubModel, ws: &mut Scratch) -> Top2 {
-    let (nk, qb) = (p.nk(), ws.qb_update);
+pub(crate) fn pass_heads<const AVX: bool>(p: &Params, sub: &SubModel, ws: &mut Scratch) -> Top2 {
+    let (nk, qb, n) = (p.nk(), ws.qb_update, sub.rfs.len());
     let mut top = Top2::new();
     ws.active.clear();
-    debug_assert_eq!(sub.heads.len(), sub.rfs.len());
+    debug_assert_eq!(sub.heads.len(), n);
     let x = &ws.xk[..nk];
-    let x32 = head::input(x);
-    let rows = sub.centers.chunks_exact(nk).zip(sub.ds.chunks_exact(nk));
-    for (i, (h, (c, d))) in sub.heads.iter().zip(rows).enumerate() {
-        let bound = qb.max(top.q2);
-        if head::lower_bound(h, &x32) >= bound {
-            continue;
+    let probe = sub.heads.probe(x);
+    for b in 0..sub.heads.blocks() {
+        let i0 = b * LANES;
+        let lb = sub.heads.bounds(AVX, b, &probe);
+        for (l, &lb) in lb.iter().enumerate().take(n - i0) {
+            let bound = qb.max(top.q2);
+            if lb >= bound {
+                continue;
+            }
+            let i = i0 + l;
+            let (c, d) = (&sub.centers[i * nk..][..nk], &sub.ds[i * nk..][..nk]);
+            let q = quad(false, true, c, d, x, &mut [], bound);
+            top.visit(p, qb, i, q, &mut ws.active);
         }
-        let q = quad(false, true, c, d, x, &mut [], bound);
-        top.visit(p, qb, i, q, &mut ws.active);
     }
     top
 }
