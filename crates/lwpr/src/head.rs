@@ -1,5 +1,5 @@
-//! The heads of diagonal-metric RFs: each RF's first [`HEAD`] centre coordinates and metric
-//! diagonals in single precision, a copy of its rows of `SubModel::centers` and `SubModel::ds`
+//! The heads of diagonal-metric RFs: each RF's first [`HEAD`] centre coordinates in single
+//! precision and metric diagonals rounded down to bfloat16, a copy of its rows of `SubModel::centers` and `SubModel::ds`
 //! kept in step with them (issue 31).
 //!
 //! The activation pass measures every RF, and with thousands of RFs of 21 dimensions (the
@@ -21,15 +21,16 @@ pub(crate) const HEAD: usize = 24;
 pub(crate) const LANES: usize = 8;
 
 /// The heads of [`LANES`] consecutive RFs: per dimension `j`, their centre coordinates `c[j]`
-/// and metric diagonals `d[j]` rounded to single precision (24 cache lines); zeros beyond the
-/// kernel dimension and in the lanes past the last RF.
+/// rounded to single precision and metric diagonals `d[j]` rounded down to bfloat16 (18 cache
+/// lines); zeros beyond the kernel dimension and in the lanes past the last RF.
 #[derive(Clone, Debug, Default, PartialEq)]
 #[repr(C, align(64))]
 pub(crate) struct Block {
     /// The centres' first coordinates, one lane per RF.
     c: [[f32; LANES]; HEAD],
-    /// The metric diagonals' first entries, one lane per RF.
-    d: [[f32; LANES]; HEAD],
+    /// The metric diagonals' first entries, one lane per RF, as the upper halves of their
+    /// single-precision values (rounded down to 8 significant bits: bfloat16).
+    d: [[u16; LANES]; HEAD],
 }
 
 /// Every RF's head, in blocks of [`LANES`]; a pure function of the RFs' rows (the same
@@ -74,16 +75,16 @@ impl Heads {
     }
 
     /// Rewrites RF `i`'s head from its rows (after a metric step; the centre does not move).
-    /// A metric entry is held below its value where single precision cannot hold it within
-    /// its relative rounding: beyond its range as its largest number, below `2^-100` as 0.
+    /// A metric entry is held below its value: rounded to single precision, beyond its range
+    /// as its largest number, below `2^-100` as 0, and rounded down to 8 significant bits.
     pub fn set(&mut self, i: usize, c: &[f64], d: &[f64]) {
         let (b, l) = (i / LANES, i % LANES);
         let blk = &mut self.blocks[b];
         for j in 0..HEAD.min(c.len()) {
             let dj = if d[j] < D_TINY {
-                0.0
+                0
             } else {
-                (d[j] as f32).min(f32::MAX)
+                ((d[j] as f32).min(f32::MAX).to_bits() >> 16) as u16
             };
             (blk.c[j][l], blk.d[j][l]) = (c[j] as f32, dj);
             self.c_max[j] = self.c_max[j].max((c[j] as f32).abs());
@@ -99,7 +100,7 @@ impl Heads {
             let blk = &mut self.blocks[i / LANES];
             (blk.c[j][i % LANES], blk.d[j][i % LANES]) = (c, d);
             let blk = &mut self.blocks[bl];
-            (blk.c[j][ll], blk.d[j][ll]) = (0.0, 0.0);
+            (blk.c[j][ll], blk.d[j][ll]) = (0.0, 0);
         }
         self.len = last;
         if ll == 0 {
@@ -141,15 +142,16 @@ impl Heads {
     /// Each term's distance `|x_j − c_j|` is reduced by the probe's slack `e_j`, at least
     /// `2^-20·(|x_j| + |c_j|) + 2^-120`: more than the error of rounding `x_j`, `c_j` and their
     /// difference to single precision (relative `2^-22` of it at most, absolute `2^-148` among
-    /// subnormal numbers); a reduced distance that is NaN (an input or a centre beyond single
-    /// precision's range, or `|x_j| + max |c_j|` beyond it) or negative counts as 0, and none
-    /// is infinite (`|x_j − c_j| ≤ |x_j| + max |c_j|`, rounded alike). The sum of at most 24 non-negative terms, whose multiplications and additions
-    /// round by a factor within `1 ± 2^-19` (the metric entries are normal numbers, see
-    /// [`Heads::set`]) and by `2^-143` at most among subnormal numbers, is capped at single
-    /// precision's largest number, scaled by `1 − 2^-10` and lowered by `2^-130`. So the result
-    /// is below the exact sum of the head's terms, and with them below `q` (every term is
-    /// non-negative), also as the update computes `q` in double precision (relative error
-    /// below `2^-45` for up to 1,000 terms).
+    /// subnormal numbers). A reduced distance that is NaN (an input or a centre beyond single
+    /// precision's range, or `|x_j| + max |c_j|` beyond it) or negative counts as 0, and none is
+    /// infinite (`|x_j − c_j| ≤ |x_j| + max |c_j|`, rounded alike). The metric entries are
+    /// normal numbers at most `2^-24` above their value ([`Heads::set`]). So the sum of at most
+    /// 24 non-negative terms, whose multiplications and additions round by a factor within
+    /// `1 ± 2^-19` and by `2^-143` at most among subnormal numbers, capped at single
+    /// precision's largest number, scaled by `1 − 2^-10` and lowered by `2^-130`, is below the
+    /// exact sum of the head's terms, and with them below `q` (every term is non-negative),
+    /// also as the update computes `q` in double precision (relative error below `2^-45` for
+    /// up to 1,000 terms).
     #[inline(always)]
     pub fn bounds(&self, avx: bool, b: usize, pr: &Probe) -> [f64; LANES] {
         let blk = &self.blocks[b];
@@ -217,7 +219,7 @@ fn sums(avx: bool, blk: &Block, pr: &Probe) -> [f32; LANES] {
         for l in 0..LANES {
             let t = (x - c[l]).abs() - e;
             let t = if t > 0.0 { t } else { 0.0 };
-            s[l] += d[l] * t * t;
+            s[l] += f32::from_bits(u32::from(d[l]) << 16) * t * t;
         }
     }
     s

@@ -3,7 +3,7 @@
 
 use std::arch::x86_64::*;
 
-/// Per lane `l`, `Σ_{j<n} d[j][l]·t·t` with `t = max(|x[j] − c[j][l]| − e[j], 0)` (a NaN
+/// Per lane `l`, `Σ_{j<n} d[j][l]·t·t` (`d` the upper halves of single-precision numbers) with `t = max(|x[j] − c[j][l]| − e[j], 0)` (a NaN
 /// `t` as 0), summed in order of `j`.
 ///
 /// # Safety
@@ -12,7 +12,7 @@ use std::arch::x86_64::*;
 #[inline]
 pub(crate) unsafe fn sums(
     c: &[[f32; 8]],
-    d: &[[f32; 8]],
+    d: &[[u16; 8]],
     x: &[f32],
     e: &[f32],
     n: usize,
@@ -23,7 +23,13 @@ pub(crate) unsafe fn sums(
     let mut s = zero;
     for j in 0..n {
         // SAFETY: each row holds 8 values.
-        let (cj, dj) = unsafe { (_mm256_loadu_ps(c[j].as_ptr()), _mm256_loadu_ps(d[j].as_ptr())) };
+        let (cj, dj) = unsafe {
+            let dj = _mm256_cvtepu16_epi32(_mm_loadu_si128(d[j].as_ptr().cast()));
+            (
+                _mm256_loadu_ps(c[j].as_ptr()),
+                _mm256_castsi256_ps(_mm256_slli_epi32::<16>(dj)),
+            )
+        };
         let t = _mm256_andnot_ps(sign, _mm256_sub_ps(_mm256_set1_ps(x[j]), cj));
         let t = _mm256_sub_ps(t, _mm256_set1_ps(e[j]));
         // `t > 0 ? t : 0`; the comparison is false for NaN.

@@ -319,4 +319,3 @@ fn the_activation_query_skips_only_what_the_rows_put_beyond_the_cutoff() {
         "{listed} listed, {excluded} excluded by the heads"
     );
 }
-
