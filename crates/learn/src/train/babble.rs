@@ -63,12 +63,27 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
     ) -> Result<()> {
         let n = target.len();
         let (mut q_t, mut v_t) = (vec![0.0; n], vec![0.0; n]);
+        // From the arm's velocity after a braked episode (`move_v0`), else from rest.
+        let v0 = self.move_v0.take();
         for k in 0..((total + settle) / self.dt).round() as u64 {
             if self.steps >= limit {
                 break;
             }
+            let t = k as f64 * self.dt;
             for i in 0..n {
-                (q_t[i], v_t[i]) = min_jerk(start[i], target[i], k as f64 * self.dt, total);
+                (q_t[i], v_t[i]) = match &v0 {
+                    // Its overshoot (up to 0.2 v0 T) held inside the joint limits.
+                    Some(v0) => {
+                        let (q, v) = quintic_from(start[i], v0[i], target[i], t, total);
+                        let (lo, hi) = (self.q_min[i], self.q_max[i]);
+                        if q < lo || q > hi {
+                            (q.clamp(lo, hi.max(lo)), 0.0)
+                        } else {
+                            (q, v)
+                        }
+                    }
+                    None => min_jerk(start[i], target[i], t, total),
+                };
             }
             let prev = self.prev.clone();
             let scale = self.cfg.babble.gain_scale;
@@ -105,6 +120,22 @@ pub(crate) fn min_jerk(a: f64, b: f64, t: f64, total: f64) -> (f64, f64) {
     (a + (b - a) * p, if t < total { (b - a) * v } else { 0.0 })
 }
 
+/// The quintic from `a` at velocity `v0` (acceleration 0) to `b` at rest after `total` seconds:
+/// position and velocity at time `t` (held at `b` after `total`). The minimum-jerk move plus
+/// `v0 T h(s)`, `h(s) = s − 6s³ + 8s⁴ − 3s⁵` (`h(0) = h(1) = 0`, `h'(0) = 1`, `h'(1) = h''(0) =
+/// h''(1) = 0`).
+pub(crate) fn quintic_from(a: f64, v0: f64, b: f64, t: f64, total: f64) -> (f64, f64) {
+    let (q, v) = min_jerk(a, b, t, total);
+    if t >= total {
+        return (q, v);
+    }
+    let s = (t / total).clamp(0.0, 1.0);
+    let (s2, s3) = (s * s, s * s * s);
+    let h = s - 6.0 * s3 + 8.0 * s3 * s - 3.0 * s3 * s2;
+    let dh = 1.0 - 18.0 * s2 + 32.0 * s3 - 15.0 * s2 * s2;
+    (q + v0 * total * h, v + v0 * dh)
+}
+
 /// The PD command of babbling and of returning home: `ĝ(q) + s (K_P (q_d − q) + K_D (q̇_d − q̇))`.
 pub(crate) fn pd_command(
     learner: &mut Learner,
@@ -137,7 +168,7 @@ fn uniform(rng: &mut ChaCha8Rng, lo: f64, hi: f64) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use super::min_jerk;
+    use super::{min_jerk, quintic_from};
 
     /// The move starts and ends at rest at its ends, passes the midpoint at half time, and its
     /// velocity is the derivative of its position.
@@ -153,6 +184,38 @@ mod tests {
             let h = 1e-6;
             let fd = (min_jerk(a, b, t + h, total).0 - min_jerk(a, b, t - h, total).0) / (2.0 * h);
             assert!((fd - min_jerk(a, b, t, total).1).abs() < 1e-6);
+        }
+    }
+
+    /// The quintic from a velocity: its ends, its velocity as the derivative of its position,
+    /// zero acceleration at both ends, and the minimum-jerk move when the velocity is 0.
+    #[test]
+    fn the_quintic_starts_at_the_velocity_and_ends_at_rest() {
+        let (a, v0, b, total) = (0.3, -1.7, -0.4, 0.8);
+        assert_eq!(quintic_from(a, v0, b, 0.0, total), (a, v0));
+        let (q, v) = quintic_from(a, v0, b, total, total);
+        assert!((q - b).abs() < 1e-15 && v == 0.0, "end {q} {v}");
+        let h = 1e-6;
+        for k in 1..80 {
+            let t = total * k as f64 / 80.0;
+            let (qm, qp) = (
+                quintic_from(a, v0, b, t - h, total).0,
+                quintic_from(a, v0, b, t + h, total).0,
+            );
+            let v = quintic_from(a, v0, b, t, total).1;
+            assert!((v - (qp - qm) / (2.0 * h)).abs() < 1e-6, "t {t}: {v}");
+            assert_eq!(quintic_from(a, 0.0, b, t, total), min_jerk(a, b, t, total));
+        }
+        for t in [0.0, total] {
+            let acc = |t: f64| {
+                let (vm, vp) = (
+                    quintic_from(a, v0, b, t - h, total).1,
+                    quintic_from(a, v0, b, t + h, total).1,
+                );
+                (vp - vm) / (2.0 * h)
+            };
+            let one_sided = if t == 0.0 { acc(h) } else { acc(t - h) };
+            assert!(one_sided.abs() < 1e-3, "acceleration {one_sided} at {t}");
         }
     }
 }

@@ -103,6 +103,13 @@ pub struct TrainConfig {
     /// The same after an episode braked or aborted on its task error (s): short, so the PD
     /// return home takes over before the error grows. Default 0.05.
     pub brake_switch_seconds: f64,
+    /// After an episode braked or aborted, the first move of the return home (to a path
+    /// posture or home) starts its reference at the arm's measured velocity: a quintic from
+    /// `(q, q̇, 0)` to `(target, 0, 0)`, instead of the minimum-jerk move from rest. Default
+    /// false. Why: the arm is still moving when an episode brakes, and a reference at rest
+    /// makes the PD's damping `K_D q̇` brake it within a period, the largest command step of
+    /// a sarcos7 run (D24).
+    pub brake_return_from_velocity: bool,
     /// Largest change of a joint's command from one control period to the next in the
     /// on-policy phase (N·m per period; episodes, their fades and the returns home), applied
     /// after the braking step's check (`curriculum.brake_step` still sees the command before
@@ -163,6 +170,7 @@ impl Default for TrainConfig {
             switch_seconds: 0.25,
             first_switch_seconds: 5.0,
             brake_switch_seconds: 0.05,
+            brake_return_from_velocity: false,
             command_step_limit: None,
             hold_before_continuation: true,
             freeze_static_in_continuation: true,

@@ -86,6 +86,30 @@ fn a_move_from_a_held_posture_keeps_the_command_continuous() {
     );
 }
 
+/// With the measured reference, a fade from each hold's last command (`handover_seconds`)
+/// keeps the command continuous too: the P-term that the reference drops leaves over 0.1 s.
+#[test]
+fn a_handover_fade_after_a_hold_keeps_the_command_continuous() {
+    let learner = trained_unloaded();
+    let step = |handover_seconds: f64| {
+        let mut learner = learner.clone();
+        let mut robot = robot(0.5);
+        let holds = PostureHolds {
+            handover_seconds,
+            ..holds(HeldReference::Never)
+        };
+        let summary =
+            super::run_fixture::train_planar3(&mut robot, &mut learner, &continuation(0.4, holds));
+        assert!(summary.episodes >= 3, "{summary:?}");
+        robot.max_step()
+    };
+    let (abrupt, faded) = (step(0.0), step(0.1));
+    assert!(
+        faded < 0.5 * abrupt,
+        "largest step {faded} N·m with the handover fade vs {abrupt} without"
+    );
+}
+
 /// The null-space correction's updates after a 0.3-minute continuation of `learner` on the
 /// unloaded arm with `count` holds per return home and `readapting_count` while re-adapting.
 fn null_updates_after(learner: &Learner, count: usize, readapting_count: usize) -> u64 {

@@ -43,6 +43,9 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
         } else {
             self.cfg.switch_seconds
         });
+        if braked && self.cfg.brake_return_from_velocity {
+            self.move_v0 = Some(self.prev.qd.as_slice().to_vec());
+        }
         let held = self.posture_holds(limit)?;
         let start = held.unwrap_or_else(|| self.prev.q.as_slice().to_vec());
         self.pd_move_from(&start, &home, 2.0, 0.0, 0.0, limit)?;

@@ -46,6 +46,11 @@ pub struct PostureHolds {
     /// drops the PD's P-term in one period; without a change the held reference measured worse
     /// (D37).
     pub held_reference: HeldReference,
+    /// Each move after a hold starts with a fade from the hold's last command to the PD's over
+    /// this long (s; 0: none). Default 0. Why: the arm sags from a held posture under `ĝ`'s
+    /// error, and a reference that starts at the measured posture drops the PD's P-term in one
+    /// period (D37): sarcos7's largest command steps in training (0.75–1.1 N·m, at rest).
+    pub handover_seconds: f64,
 }
 
 /// When the move after a hold at a path posture starts its reference at the held posture
@@ -74,6 +79,7 @@ impl Default for PostureHolds {
             pool: 64,
             static_only: true,
             held_reference: HeldReference::Readapting,
+            handover_seconds: 0.0,
         }
     }
 }
@@ -94,6 +100,10 @@ impl PostureHolds {
             ("record_every", pos(self.record_every)),
             ("jitter", self.jitter >= 0.0 && self.jitter.is_finite()),
             ("pool", self.pool >= 1),
+            (
+                "handover_seconds",
+                self.handover_seconds >= 0.0 && self.handover_seconds.is_finite(),
+            ),
         ]
         .into_iter()
         .find(|(_, ok)| !ok);

@@ -94,6 +94,9 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
             self.pd_move_from(&start, &target, m, h, 0.0, limit)?;
             self.learner.end_hold()?;
             held = self.held_reference().then_some(target);
+            if ph.handover_seconds > 0.0 {
+                self.begin_fade(ph.handover_seconds);
+            }
         }
         (self.learning, self.static_only) = (learning, static_only);
         Ok(held)

@@ -177,6 +177,9 @@ pub struct Trainer<'a, R: Robot + ?Sized> {
     fade_from: Vec<f64>,
     fade_left: u64,
     fade_len: u64,
+    /// The next PD move starts its reference at this velocity (rad/s; then cleared), set on
+    /// the way home after a braked episode (`brake_return_from_velocity`).
+    pub(super) move_v0: Option<Vec<f64>>,
     /// The task-space disturbance observer of the episodes (`adaptation.observer_seconds`).
     pub(super) dob: crate::Dob,
     /// Whether the last command sent differed from the learner's: faded, clipped, refused by
@@ -279,6 +282,7 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
             dob,
             sent_modified: false,
             fade_len: 1,
+            move_v0: None,
             paths_drawn: 0,
             postures: Default::default(),
             static_only: false,
