@@ -23,7 +23,7 @@ pub enum Norm {
     /// One divisor per dimension.
     List(Vec<f64>),
     /// `"std"`: the data's standard deviation; must be resolved with
-    /// [`LwprConfig::resolve_std`] before building a model.
+    /// [`crate::LwprConfig::resolve_std`] before building a model.
     Keyword(NormKeyword),
 }
 

@@ -14,7 +14,7 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
 pub struct RfId(pub u64);
 
-/// A change of the partition, queued by [`Lwpr::update`]; read with [`Lwpr::drain_events`].
+/// A change of the partition, queued by [`crate::Lwpr::update`]; read with [`crate::Lwpr::drain_events`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub enum RfEvent {
     /// A new RF in sub-model `sub`, possibly copying the metric of RF `copied_from`.

@@ -63,8 +63,18 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
     ) -> Result<()> {
         let n = target.len();
         let (mut q_t, mut v_t) = (vec![0.0; n], vec![0.0; n]);
-        // From the arm's velocity after a braked episode (`move_v0`), else from rest.
-        let v0 = self.move_v0.take();
+        // From the arm's velocity after a braked episode (`move_v0`), else from rest; the
+        // velocity capped so that the quintic's overshoot stays 0.05 rad inside the limits.
+        let v0 = self.move_v0.take().map(|mut v0| {
+            for (i, v) in v0.iter_mut().enumerate() {
+                let (lo, hi) = (self.q_min[i] + 0.05, self.q_max[i] - 0.05);
+                let reach = QUINTIC_OVERSHOOT * total;
+                let up = ((hi - start[i].max(target[i])) / reach).max(0.0);
+                let down = ((start[i].min(target[i]) - lo) / reach).max(0.0);
+                *v = v.clamp(-down, up);
+            }
+            v0
+        });
         for k in 0..((total + settle) / self.dt).round() as u64 {
             if self.steps >= limit {
                 break;
@@ -72,16 +82,7 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
             let t = k as f64 * self.dt;
             for i in 0..n {
                 (q_t[i], v_t[i]) = match &v0 {
-                    // Its overshoot (up to 0.2 v0 T) held inside the joint limits.
-                    Some(v0) => {
-                        let (q, v) = quintic_from(start[i], v0[i], target[i], t, total);
-                        let (lo, hi) = (self.q_min[i], self.q_max[i]);
-                        if q < lo || q > hi {
-                            (q.clamp(lo, hi.max(lo)), 0.0)
-                        } else {
-                            (q, v)
-                        }
-                    }
+                    Some(v0) => quintic_from(start[i], v0[i], target[i], t, total),
                     None => min_jerk(start[i], target[i], t, total),
                 };
             }
@@ -120,10 +121,14 @@ pub(crate) fn min_jerk(a: f64, b: f64, t: f64, total: f64) -> (f64, f64) {
     (a + (b - a) * p, if t < total { (b - a) * v } else { 0.0 })
 }
 
-/// The quintic from `a` at velocity `v0` (acceleration 0) to `b` at rest after `total` seconds:
-/// position and velocity at time `t` (held at `b` after `total`). The minimum-jerk move plus
-/// `v0 T h(s)`, `h(s) = s − 6s³ + 8s⁴ − 3s⁵` (`h(0) = h(1) = 0`, `h'(0) = 1`, `h'(1) = h''(0) =
-/// h''(1) = 0`).
+/// The largest value of [`quintic_from`]'s `h` on `[0, 1]` (at `s = 1/3`): the move overshoots
+/// its ends by at most this times `|v0| T`.
+pub(crate) const QUINTIC_OVERSHOOT: f64 = 16.0 / 81.0;
+
+/// The quintic from `a` (rad) at velocity `v0` (rad/s; acceleration 0) to `b` at rest after
+/// `total` seconds: position and velocity at time `t` (s; held at `b` after `total`). The
+/// minimum-jerk move plus `v0 T h(s)`, `h(s) = s − 6s³ + 8s⁴ − 3s⁵ = s (1 − s)³ (1 + 3s) ≥ 0`
+/// (`h(0) = h(1) = 0`, `h'(0) = 1`, `h'(1) = h''(0) = h''(1) = 0`).
 pub(crate) fn quintic_from(a: f64, v0: f64, b: f64, t: f64, total: f64) -> (f64, f64) {
     let (q, v) = min_jerk(a, b, t, total);
     if t >= total {
@@ -168,7 +173,7 @@ fn uniform(rng: &mut ChaCha8Rng, lo: f64, hi: f64) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use super::{min_jerk, quintic_from};
+    use super::{min_jerk, quintic_from, QUINTIC_OVERSHOOT};
 
     /// The move starts and ends at rest at its ends, passes the midpoint at half time, and its
     /// velocity is the derivative of its position.
@@ -216,6 +221,37 @@ mod tests {
             };
             let one_sided = if t == 0.0 { acc(h) } else { acc(t - h) };
             assert!(one_sided.abs() < 1e-3, "acceleration {one_sided} at {t}");
+        }
+        // Its overshoot beyond the ends is at most `QUINTIC_OVERSHOOT |v0| T`, and reaches it
+        // when the ends coincide.
+        for (a, v0, b) in [
+            (0.2, 3.0, 0.2),
+            (0.2, -3.0, 0.2),
+            (0.0, 2.0, -0.5),
+            (0.0, -2.0, 0.7),
+        ] {
+            let qs: Vec<f64> = (0..=4000)
+                .map(|k| quintic_from(a, v0, b, total * k as f64 / 4000.0, total).0)
+                .collect();
+            let (hi, lo) = qs
+                .iter()
+                .fold((f64::MIN, f64::MAX), |(h, l), &q| (h.max(q), l.min(q)));
+            let bound = QUINTIC_OVERSHOOT * v0.abs() * total;
+            let over = if v0 > 0.0 {
+                hi - a.max(b)
+            } else {
+                a.min(b) - lo
+            };
+            assert!(
+                over <= bound + 1e-12,
+                "{a} {v0} {b}: overshoot {over} above {bound}"
+            );
+            if a == b {
+                assert!(
+                    over > bound - 1e-6,
+                    "{a} {v0} {b}: overshoot {over} below {bound}"
+                );
+            }
         }
     }
 }

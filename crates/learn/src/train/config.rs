@@ -107,8 +107,8 @@ pub struct TrainConfig {
     /// posture or home) starts its reference at the arm's measured velocity: a quintic from
     /// `(q, q̇, 0)` to `(target, 0, 0)`, instead of the minimum-jerk move from rest. Default
     /// false. Why: the arm is still moving when an episode brakes, and a reference at rest
-    /// makes the PD's damping `K_D q̇` brake it within a period, the largest command step of
-    /// a sarcos7 run (D24).
+    /// makes the PD's damping `K_D q̇` brake it within a few periods, with the largest command
+    /// steps of a sarcos7 run (D44).
     pub brake_return_from_velocity: bool,
     /// Largest change of a joint's command from one control period to the next in the
     /// on-policy phase (N·m per period; episodes, their fades and the returns home), applied

@@ -49,11 +49,11 @@ fn continuation(minutes: f64, holds: PostureHolds) -> TrainConfig {
 }
 
 /// The largest command step of a 0.4-minute continuation (no babbling, 3-s episodes) of
-/// `learner` on the loaded arm.
-fn loaded_continuation(learner: &Learner, held_reference: HeldReference) -> f64 {
+/// `learner` on the loaded arm with `holds`.
+fn loaded_continuation(learner: &Learner, holds: PostureHolds) -> f64 {
     let mut learner = learner.clone();
     let mut robot = robot(0.5);
-    let cfg = continuation(0.4, holds(held_reference));
+    let cfg = continuation(0.4, holds);
     let summary = super::run_fixture::train_planar3(&mut robot, &mut learner, &cfg);
     assert!(summary.episodes >= 3, "{summary:?}");
     robot.max_step()
@@ -78,8 +78,8 @@ fn trained_unloaded() -> Learner {
 #[test]
 fn a_move_from_a_held_posture_keeps_the_command_continuous() {
     let learner = trained_unloaded();
-    let measured = loaded_continuation(&learner, HeldReference::Never);
-    let held = loaded_continuation(&learner, HeldReference::Always);
+    let measured = loaded_continuation(&learner, holds(HeldReference::Never));
+    let held = loaded_continuation(&learner, holds(HeldReference::Always));
     assert!(
         held < 0.5 * measured,
         "largest step {held} N·m from the held posture vs {measured} from the measured one"
@@ -92,16 +92,11 @@ fn a_move_from_a_held_posture_keeps_the_command_continuous() {
 fn a_handover_fade_after_a_hold_keeps_the_command_continuous() {
     let learner = trained_unloaded();
     let step = |handover_seconds: f64| {
-        let mut learner = learner.clone();
-        let mut robot = robot(0.5);
         let holds = PostureHolds {
             handover_seconds,
             ..holds(HeldReference::Never)
         };
-        let summary =
-            super::run_fixture::train_planar3(&mut robot, &mut learner, &continuation(0.4, holds));
-        assert!(summary.episodes >= 3, "{summary:?}");
-        robot.max_step()
+        loaded_continuation(&learner, holds)
     };
     let (abrupt, faded) = (step(0.0), step(0.1));
     assert!(

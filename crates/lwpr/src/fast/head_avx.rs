@@ -1,10 +1,11 @@
-//! The AVX2 form of the heads' block sums (`head.rs`, `Heads::bounds`): the same operations in
-//! the same order per lane, so the same values, eight RFs in one register.
+//! The AVX2 form of the heads' block sums (`head/bound.rs`, `Heads::bounds`): the same
+//! operations in the same order per lane, so the same values, eight RFs in one register.
 
 use std::arch::x86_64::*;
 
-/// Per lane `l`, `Σ_{j<n} d[j][l]·t·t` (`d` the upper halves of single-precision numbers) with `t = max(|x[j] − c[j][l]| − e[j], 0)` (a NaN
-/// `t` as 0), summed in order of `j`.
+/// Per lane `l`, `Σ_{j<n} d[j][l]·t·t` (`d` the upper halves of single-precision numbers)
+/// with `t = max(|x[j] − c[j][l]| − e[j], 0)` (a NaN `t` as 0), summed in order of
+/// `j`.
 ///
 /// # Safety
 /// AVX2; `n ≤ c.len()`.

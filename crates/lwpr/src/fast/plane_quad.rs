@@ -13,7 +13,7 @@ use crate::rf::SubModel;
 use crate::scratch::Scratch;
 
 /// Calls `f(i, q_i)` for every RF `i` in order, with `q_i = ‖M_i (x − c_i)‖²` as
-/// [`crate::scratch::quad`] computes it (bit for bit). `centers` holds 2 values per RF,
+/// [`crate::distance::quad`] computes it (bit for bit). `centers` holds 2 values per RF,
 /// `ms` the 4 of each RF's row-major `M` (upper-triangular); `x` is the kernel input.
 /// `AVX` may be set only where the CPU has AVX2 (checked at run time by the caller). Returns
 /// how many RFs were computed four at a time (on AVX2; the others one at a time).

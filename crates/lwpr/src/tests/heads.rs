@@ -1,13 +1,10 @@
-//! The heads of diagonal-metric RFs (`head.rs`): their single-precision lower bound of `q`
-//! against the distance in double precision, at ordinary values and where single precision
-//! overflows or underflows; the activation pass over the heads against the pass over the
-//! rows, bit for bit, along a training run whose RFs the heads mostly exclude; and the heads
-//! rebuilt on loading.
+//! The heads of diagonal-metric RFs (`head/`) in the model: the activation pass over the heads
+//! against the pass over the rows, bit for bit, along a training run whose RFs the heads mostly
+//! exclude; the activation query against a direct computation; and the heads rebuilt on
+//! loading. Their bound itself: `head_bounds.rs`.
 
-use super::activation::draw;
 use crate::config::{LwprConfig, MetricInit};
 use crate::distance::quad;
-use crate::head::{self, Heads};
 use crate::model::Lwpr;
 use crate::params::Params;
 use crate::rf::SubModel;
@@ -15,125 +12,6 @@ use crate::scratch::Scratch;
 use crate::update::activation::{pass_heads, pass_rows, Top2};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-
-/// A value of any scale the bound must survive: `draw`'s mix, beyond single precision's
-/// range (both ends), and huge or tiny metrics.
-fn extreme(rng: &mut ChaCha8Rng) -> f64 {
-    match rng.random_range(0..14) {
-        0 => 1e39 * rng.random_range(-1.0..1.0),
-        1 => 1e-300 * rng.random_range(0.0..1.0),
-        2 => 1e300 * rng.random_range(0.0..1.0),
-        3 => 3e38,
-        6 => 6e29 * rng.random_range(-1.0..1.0),
-        // Subnormal in single precision.
-        4 => 1e-44 * rng.random_range(0.0..1.0),
-        5 => 1e-39 * rng.random_range(-1.0..1.0),
-        _ => draw(rng),
-    }
-}
-
-/// `q` in double precision, as the update computes it, and from the head.
-fn both(c: &[f64], d: &[f64], x: &[f64]) -> (f64, f64) {
-    let q = quad(false, true, c, d, x, &mut [], f64::INFINITY);
-    let mut h = Heads::default();
-    h.push(c, d);
-    let lb = h.bound(0, &h.probe(x));
-    (q, lb)
-}
-
-#[test]
-fn the_head_bound_lies_below_q() {
-    let mut rng = ChaCha8Rng::seed_from_u64(11);
-    let (mut huge, mut tight) = (0, 0);
-    for trial in 0..20_000 {
-        let nk = [9, 16, 21, 33][trial % 4];
-        let ordinary = trial % 3 == 0;
-        let v = |rng: &mut ChaCha8Rng| {
-            if ordinary {
-                rng.random_range(-2.0..2.0)
-            } else {
-                extreme(rng)
-            }
-        };
-        let c: Vec<f64> = (0..nk).map(|_| v(&mut rng)).collect();
-        let mut x: Vec<f64> = (0..nk).map(|_| v(&mut rng)).collect();
-        // Inputs at the centre, or one rounding away from it, in some dimensions.
-        for j in 0..nk {
-            match rng.random_range(0..6) {
-                0 => x[j] = c[j],
-                1 => x[j] = c[j] * (1.0 + f64::EPSILON),
-                _ => {}
-            }
-        }
-        // Large inputs a little off large centres: single precision cannot hold `x − c`.
-        if trial % 7 == 1 {
-            for j in 0..nk {
-                x[j] = c[j] + 1e-9 * c[j].abs() * rng.random_range(-1.0..1.0);
-            }
-        }
-        let d: Vec<f64> = (0..nk)
-            .map(|_| {
-                if ordinary {
-                    rng.random_range(0.1..10.0)
-                } else {
-                    extreme(&mut rng).abs()
-                }
-            })
-            .collect();
-        let (q, lb) = both(&c, &d, &x);
-        // Where the bound reaches a cutoff, so does `q`: never `lb > q`.
-        assert!(
-            lb <= q,
-            "nk {nk}: bound {lb:e} above q {q:e}\nc {c:?}\nd {d:?}\nx {x:?}"
-        );
-        huge += usize::from(q > f64::from(f32::MAX));
-        if ordinary && trial % 7 != 1 {
-            // And it is tight where nothing overflows: within 1 % of the head's own terms.
-            let n = nk.min(head::HEAD);
-            let (q_head, _) = both(&c[..n], &d[..n], &x[..n]);
-            assert!(
-                lb >= 0.99 * q_head,
-                "nk {nk}: bound {lb} far below {q_head}"
-            );
-            tight += 1;
-        }
-    }
-    // Both kinds of case were drawn: `q` beyond single precision, and ordinary values.
-    assert!(
-        huge > 1000 && tight > 5000,
-        "{huge} cases of huge q, {tight} ordinary ones"
-    );
-}
-
-#[test]
-fn the_avx2_bounds_are_the_portable_bounds() {
-    if !crate::fast::has_avx2() {
-        eprintln!("no AVX2 on this CPU: nothing to compare");
-        return;
-    }
-    let mut rng = ChaCha8Rng::seed_from_u64(12);
-    for trial in 0..400 {
-        let nk = [9, 16, 21, 24, 33][trial % 5];
-        let mut h = Heads::default();
-        for _ in 0..rng.random_range(1..30) {
-            let c: Vec<f64> = (0..nk).map(|_| extreme(&mut rng)).collect();
-            let d: Vec<f64> = (0..nk).map(|_| extreme(&mut rng).abs()).collect();
-            h.push(&c, &d);
-        }
-        for _ in 0..20 {
-            let x: Vec<f64> = (0..nk).map(|_| extreme(&mut rng)).collect();
-            let pr = h.probe(&x);
-            for b in 0..h.blocks() {
-                let bits = |v: [f64; head::LANES]| v.map(f64::to_bits);
-                assert_eq!(
-                    bits(h.bounds(true, b, &pr)),
-                    bits(h.bounds(false, b, &pr)),
-                    "nk {nk}, block {b}"
-                );
-            }
-        }
-    }
-}
 
 /// A smooth path through 21 dimensions (as a robot's joint states), two outputs.
 fn sample(t: f64, phase: &[f64]) -> (Vec<f64>, [f64; 2]) {
@@ -172,6 +50,7 @@ fn trained(phase: &[f64], n: usize, dt: f64) -> Lwpr {
     m
 }
 
+#[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 unsafe fn pass_heads_avx2(p: &Params, sub: &SubModel, ws: &mut Scratch) -> Top2 {
     pass_heads::<true>(p, sub, ws)
@@ -202,6 +81,7 @@ fn the_pass_over_heads_gives_the_pass_over_rows() {
         for sub in subs.iter() {
             let top_r = pass_rows::<0, false>(p, sub, ws);
             let act_r = ws.active.clone();
+            #[cfg(target_arch = "x86_64")]
             if crate::fast::has_avx2() {
                 // SAFETY: the CPU has AVX2.
                 let top_a = unsafe { pass_heads_avx2(p, sub, ws) };

@@ -8,6 +8,7 @@ mod dot;
 mod fused;
 mod group;
 mod guard;
+mod head_bounds;
 mod heads;
 mod paths;
 mod pls_exact;

@@ -11,7 +11,7 @@ use crate::scratch::Scratch;
 /// The activation pass: queues in `ws.active` every RF whose activation exceeds the update
 /// threshold, with the kernel's derivatives, and returns the two nearest RFs. `NK > 0` fixes
 /// the kernel dimension at compile time (0: taken from `p`); `AVX` is set only after the
-/// run-time check of the CPU (`distance::quad`). Where the model keeps heads (`head.rs`) by
+/// run-time check of the CPU (`distance::quad`). Where the model keeps heads (`head/`) by
 /// [`pass_heads`], else by [`pass_rows`]: the same results.
 #[inline(always)]
 pub(crate) fn pass<const NK: usize, const AVX: bool>(
@@ -66,7 +66,7 @@ pub(crate) fn pass_rows<const NK: usize, const AVX: bool>(
     top
 }
 
-/// [`pass`] over the heads (`head.rs`; a diagonal metric over many dimensions): an RF whose
+/// [`pass`] over the heads (`head/`; a diagonal metric over many dimensions): an RF whose
 /// head's lower bound of `q` reaches the pass's bound (it would be neither updated nor among
 /// the two nearest) is skipped; the others are measured from their rows as by [`pass_rows`].
 /// The same results as [`pass_rows`], tested against it (`tests/heads.rs`).

@@ -22,7 +22,7 @@ pub(crate) trait Stages {
     const NR: usize;
     /// Whether the code runs on AVX2 (set only after the run-time check of the CPU).
     const AVX: bool;
-    /// Whether the activation passes skip the RFs that their heads exclude (`head.rs`), where
+    /// Whether the activation passes skip the RFs that their heads exclude (`head/`), where
     /// the model keeps heads.
     const HEADS: bool;
 
