@@ -7,6 +7,8 @@
 //! caller (who may own a simulator and its model — the driver never does).
 
 mod babble;
+#[cfg(test)]
+mod brake_return_tests;
 mod config;
 #[cfg(test)]
 mod continuation_tests;
