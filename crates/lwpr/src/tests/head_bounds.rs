@@ -110,6 +110,18 @@ fn rows(rng: &mut ChaCha8Rng, nk: usize, ordinary: bool) -> (Vec<f64>, Vec<f64>)
     }
 }
 
+/// An input of `nk` dimensions: ordinary values, or of any scale.
+fn input(rng: &mut ChaCha8Rng, nk: usize, ordinary: bool) -> Vec<f64> {
+    let v = |rng: &mut ChaCha8Rng| {
+        if ordinary {
+            rng.random_range(-2.0..2.0)
+        } else {
+            extreme(rng)
+        }
+    };
+    (0..nk).map(|_| v(rng)).collect()
+}
+
 /// Several heads sharing blocks, with removals in between: every head's bound lies below its
 /// `q`, the slack set by the heads' largest centre (rescanned when a removal takes it), and
 /// the heads equal their rebuild from the rows.
@@ -138,15 +150,7 @@ fn the_bounds_of_shared_blocks_lie_below_q_after_removals() {
             "trial {trial}: the heads differ from their rebuild"
         );
         for _ in 0..10 {
-            let x: Vec<f64> = (0..nk)
-                .map(|_| {
-                    if ordinary {
-                        rng.random_range(-2.0..2.0)
-                    } else {
-                        extreme(&mut rng)
-                    }
-                })
-                .collect();
+            let x = input(&mut rng, nk, ordinary);
             let pr = h.probe(&x);
             for (i, (c, d)) in all.iter().enumerate() {
                 let q = quad(false, true, c, d, &x, &mut [], f64::INFINITY);
@@ -183,15 +187,7 @@ fn the_avx2_bounds_are_the_portable_bounds() {
             }
         }
         for _ in 0..20 {
-            let x: Vec<f64> = (0..nk)
-                .map(|_| {
-                    if ordinary {
-                        rng.random_range(-2.0..2.0)
-                    } else {
-                        extreme(&mut rng)
-                    }
-                })
-                .collect();
+            let x = input(&mut rng, nk, ordinary);
             let pr = h.probe(&x);
             for b in 0..h.blocks() {
                 let bits = |v: [f64; head::LANES]| v.map(f64::to_bits);
