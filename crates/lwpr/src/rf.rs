@@ -14,7 +14,8 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
 pub struct RfId(pub u64);
 
-/// A change of the partition, queued by [`crate::Lwpr::update`]; read with [`crate::Lwpr::drain_events`].
+/// A change of the partition, queued by [`crate::Lwpr::update`]; read with
+/// [`crate::Lwpr::drain_events`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub enum RfEvent {
     /// A new RF in sub-model `sub`, possibly copying the metric of RF `copied_from`.
@@ -165,16 +166,12 @@ impl SubModel {
         }
     }
 
-    /// Copies RF `i`'s rows of `centers` and `ds` into its head, after its metric changed.
+    /// Copies RF `i`'s row of `ds` into its head, after its metric changed.
     #[inline(always)]
     pub fn sync_head(&mut self, p: &Params, i: usize) {
         if head::in_use(p) {
-            let (nk, ml) = (p.nk(), p.mlen());
-            let (c, d) = (
-                &self.centers[i * nk..(i + 1) * nk],
-                &self.ds[i * ml..(i + 1) * ml],
-            );
-            self.heads.set(i, c, d);
+            let ml = p.mlen();
+            self.heads.set_metric(i, &self.ds[i * ml..(i + 1) * ml]);
         }
     }
 

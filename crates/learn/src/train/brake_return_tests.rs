@@ -4,10 +4,9 @@
 
 use super::babble::pd_command;
 use super::run_fixture::Recording;
-use super::{TrainConfig, Trainer};
+use super::TrainConfig;
 use crate::learner::fixture;
-use crate::train::OnEvaluation;
-use osrl_dynamics::{robots, Robot};
+use osrl_dynamics::Robot;
 
 /// The first two commands of a 0.8-s PD move from the arm's posture (moving at `qd`) to a
 /// target, with the move's reference starting at `v0` (`None`: at rest); and whether the
@@ -17,32 +16,14 @@ fn first_commands(qd: &[f64], v0: Option<Vec<f64>>) -> (Vec<Vec<f64>>, bool) {
     let mut robot = Recording::new(fixture::robot());
     let q0 = robot.measurement().q.as_slice().to_vec();
     robot.sim.reset(&q0, qd).unwrap();
-    let model = robots::planar3();
-    let traj = osrl_control::TrajectoryConfig::default()
-        .build(&model)
-        .unwrap();
-    let axes = model.task_axes().to_vec();
     let cfg = TrainConfig::default();
-    let mut evaluate = |_: &mut crate::Learner| Ok(Default::default());
-    let mut obs = OnEvaluation(|_: &super::Progress| {});
-    let mut trainer = Trainer::new(
-        &mut robot,
-        &mut learner,
-        &traj,
-        &axes,
-        &cfg,
-        &mut evaluate,
-        &mut obs,
-    )
-    .unwrap();
-    trainer.move_v0 = v0;
-    let target: Vec<f64> = q0.iter().map(|q| q + 0.1).collect();
-    let limit = trainer.steps + 2;
-    trainer
-        .pd_move_from(&q0, &target, 0.8, 0.0, 0.0, limit)
-        .unwrap();
-    let left = trainer.move_v0.is_some();
-    drop(trainer);
+    let left = super::run_fixture::with_planar3_trainer(&mut robot, &mut learner, &cfg, |mut t| {
+        t.move_v0 = v0;
+        let target: Vec<f64> = q0.iter().map(|q| q + 0.1).collect();
+        let limit = t.steps + 2;
+        t.pd_move_from(&q0, &target, 0.8, 0.0, 0.0, limit).unwrap();
+        t.move_v0.is_some()
+    });
     (robot.sent, left)
 }
 

@@ -12,6 +12,17 @@ pub fn train_planar3<R: Robot + ?Sized>(
     learner: &mut Learner,
     cfg: &TrainConfig,
 ) -> TrainSummary {
+    with_planar3_trainer(robot, learner, cfg, |t| t.run().unwrap())
+}
+
+/// `f` on the driver of `learner` on `robot` (planar3) along its default figure-8 with `cfg`,
+/// no evaluations, no observer.
+pub fn with_planar3_trainer<R: Robot + ?Sized, T>(
+    robot: &mut R,
+    learner: &mut Learner,
+    cfg: &TrainConfig,
+    f: impl FnOnce(Trainer<'_, R>) -> T,
+) -> T {
     let model = robots::planar3();
     let traj = osrl_control::TrajectoryConfig::default()
         .build(&model)
@@ -19,10 +30,7 @@ pub fn train_planar3<R: Robot + ?Sized>(
     let axes = model.task_axes().to_vec();
     let mut evaluate = |_: &mut Learner| Ok(Default::default());
     let mut obs = OnEvaluation(|_: &Progress| {});
-    Trainer::new(robot, learner, &traj, &axes, cfg, &mut evaluate, &mut obs)
-        .unwrap()
-        .run()
-        .unwrap()
+    f(Trainer::new(robot, learner, &traj, &axes, cfg, &mut evaluate, &mut obs).unwrap())
 }
 
 /// A simulated robot that records the commands it is sent.

@@ -35,13 +35,14 @@ impl Heads {
     /// Lower bounds of `q = Σ_j d_j (x_j − c_j)²` over all dimensions of the RFs of block
     /// `b`, at the input of probe `pr`, one per lane (0 in the lanes past the last RF).
     ///
-    /// Each term's distance `|x_j − c_j|` is reduced by the probe's slack `e_j`, at least `2^-20·(|x_j| + |c_j|) + 2^-120`: more than the error of
-    /// rounding `x_j`, `c_j` and their difference to single precision (relative `2^-22` of
-    /// it at most, absolute `2^-148` among subnormal numbers). A reduced distance that is
-    /// NaN (an input or a centre beyond single precision's range, or `|x_j| + max |c_j|`
-    /// beyond it) or negative counts as 0, and none is infinite (`|x_j − c_j| ≤ |x_j| + max
-    /// |c_j|`, rounded alike). The metric entries are normal numbers at most `2^-24` above
-    /// their value ([`Heads::set`]). So the sum of at most 24 non-negative terms, whose
+    /// Each term's distance `|x_j − c_j|` is reduced by the probe's slack `e_j`, at least
+    /// `2^-20·(|x_j| + |c_j|) + 2^-120`: more than the error of rounding `x_j`, `c_j` and
+    /// their difference to single precision (relative `2^-22` of it at most, absolute
+    /// `2^-148` among subnormal numbers). A reduced distance that is NaN (an input or a
+    /// centre beyond single precision's range, or `|x_j| + max |c_j|` beyond it) or
+    /// negative counts as 0, and none is infinite (`|x_j − c_j| ≤ |x_j| + max |c_j|`,
+    /// rounded alike). The metric entries are normal numbers at most `2^-24` above their
+    /// value ([`Heads::set_metric`]). So the sum of at most 24 non-negative terms, whose
     /// multiplications and additions round by a factor within `1 ± 2^-19` and by `2^-143`
     /// at most among subnormal numbers, capped at single precision's largest number, scaled
     /// by `1 − 2^-10` and lowered by `2^-130`, is below the exact sum of the head's terms,

@@ -63,26 +63,29 @@ impl Heads {
         if self.len.is_multiple_of(LANES) {
             self.blocks.push(Block::default());
         }
+        let i = self.len;
         self.len += 1;
-        self.set(self.len - 1, c, d);
+        let blk = &mut self.blocks[i / LANES];
+        for j in 0..HEAD.min(c.len()) {
+            let cj = c[j] as f32;
+            blk.c[j][i % LANES] = cj;
+            self.c_max[j] = self.c_max[j].max(cj.abs());
+        }
+        self.set_metric(i, d);
     }
 
-    /// Rewrites RF `i`'s head from its rows (after a metric step; the centre does not move).
-    /// A metric entry is held at most `2^-24` above its value (its rounding to single
-    /// precision), and below it where that cannot hold it: beyond its range as its largest
-    /// number, below `2^-100` (or NaN) as 0, and rounded down to 8 significant bits.
-    pub fn set(&mut self, i: usize, c: &[f64], d: &[f64]) {
-        let (b, l) = (i / LANES, i % LANES);
-        let blk = &mut self.blocks[b];
-        for j in 0..HEAD.min(c.len()) {
-            let dj = if d[j] >= D_TINY {
+    /// Rewrites RF `i`'s metric diagonals from its row `d` (after a metric step; the centre
+    /// does not move). An entry is held at most `2^-24` above its value (its rounding to
+    /// single precision), and below it where that cannot hold it: beyond its range as its
+    /// largest number, below `2^-100` (or NaN) as 0, and rounded down to 8 significant bits.
+    pub fn set_metric(&mut self, i: usize, d: &[f64]) {
+        let blk = &mut self.blocks[i / LANES];
+        for j in 0..HEAD.min(d.len()) {
+            blk.d[j][i % LANES] = if d[j] >= D_TINY {
                 ((d[j] as f32).min(f32::MAX).to_bits() >> 16) as u16
             } else {
                 0
             };
-            let cj = c[j] as f32;
-            (blk.c[j][l], blk.d[j][l]) = (cj, dj);
-            self.c_max[j] = self.c_max[j].max(cj.abs());
         }
     }
 
@@ -113,6 +116,7 @@ impl Heads {
     }
 
     /// The number of blocks.
+    #[cfg(test)]
     pub fn blocks(&self) -> usize {
         self.blocks.len()
     }
@@ -123,7 +127,7 @@ const SLACK: f32 = 1.0 / (1u32 << 20) as f32;
 /// The absolute reduction of a head's distances (`2^-120`, a normal number in single
 /// precision, so that the arithmetic stays off the CPU's slow subnormal path).
 const SLACK_ABS: f32 = 1.0 / (1u64 << 20) as f32 / (1u128 << 100) as f32;
-/// Metric entries below this (`2^-100`) are held as 0 (see [`Heads::set`]).
+/// Metric entries below this (`2^-100`) are held as 0 (see [`Heads::set_metric`]).
 const D_TINY: f64 = 1.0 / (1u128 << 100) as f64;
 
 /// Whether a model keeps heads: a diagonal metric over more than 8 kernel dimensions.

@@ -3,7 +3,7 @@
 //! nearest, for the add and prune tests of step 5.
 
 use crate::distance::quad;
-use crate::head::{self, LANES};
+use crate::head;
 use crate::params::{Params, W_UPDATE};
 use crate::rf::SubModel;
 use crate::scratch::Scratch;
@@ -77,20 +77,17 @@ pub(crate) fn pass_heads<const AVX: bool>(p: &Params, sub: &SubModel, ws: &mut S
     ws.active.clear();
     debug_assert_eq!(sub.heads.len(), n);
     let x = &ws.xk[..nk];
-    let probe = sub.heads.probe(x);
-    for b in 0..sub.heads.blocks() {
-        let i0 = b * LANES;
-        let lb = sub.heads.bounds(AVX, b, &probe);
-        for (l, &lb) in lb.iter().enumerate().take(n - i0) {
-            let bound = qb.max(top.q2);
-            if lb >= bound {
-                continue;
-            }
-            let i = i0 + l;
-            let (c, d) = (&sub.centers[i * nk..][..nk], &sub.ds[i * nk..][..nk]);
-            let q = quad(false, true, c, d, x, &mut [], bound);
-            top.visit(p, qb, i, q, &mut ws.active);
+    let Some(mut heads) = sub.heads.walk(AVX, p, x) else {
+        unreachable!("the pass over heads runs where the model keeps them")
+    };
+    for i in 0..n {
+        let bound = qb.max(top.q2);
+        if heads.beyond(i, bound) {
+            continue;
         }
+        let (c, d) = (&sub.centers[i * nk..][..nk], &sub.ds[i * nk..][..nk]);
+        let q = quad(false, true, c, d, x, &mut [], bound);
+        top.visit(p, qb, i, q, &mut ws.active);
     }
     top
 }
