@@ -115,6 +115,12 @@ pub struct AdaptationConfig {
     /// on, learned from the holds at path postures of the run (`[train.posture_holds]`), so a
     /// controller trained without it learns one for the changed robot. Default false.
     pub null_correction: bool,
+    /// With the re-adaptation enabled, the null-space correction's global part
+    /// (`gravity.null_scale`) is on: the holds teach one scale `k` of `ĝ`, `k ĝ(q)` joins the
+    /// correction everywhere, and the load correction keeps its task part only. Default true.
+    /// Why: heavier links change the gravity torques in proportion to `ĝ` at every posture,
+    /// where the holds' model knows only the held ones (sarcos7's heavier links, D45).
+    pub null_scale: bool,
 }
 
 /// Which prediction error the re-adaptation's level is made of (`docs/learner.md`,
@@ -162,6 +168,7 @@ impl Default for AdaptationConfig {
             max_strength: 1.0,
             offset_floor: 1.0,
             null_correction: false,
+            null_scale: true,
         }
     }
 }

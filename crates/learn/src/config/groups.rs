@@ -86,6 +86,27 @@ pub struct GravityConfig {
     /// all at its end. Default 100 (0.2 s at 2 ms): a hold cut short, or a field fitted to a
     /// few samples of an arm still settling, would move the command on a guess.
     pub null_min_samples: usize,
+    /// The correction's global part (`learner/null_scale.rs`), also in training: one scale `k`
+    /// fitted to the holds' gravity errors `u − ĝ` adds `k ĝ(q)` everywhere, the LWPR model
+    /// learns what it leaves, and the load correction keeps its task part only. Default false
+    /// (`adaptation.null_scale` turns it on while re-adapting). Why: a change of the masses
+    /// moves the gravity torques in proportion to `ĝ` at every posture, where the model's fields
+    /// know only the held ones.
+    pub null_scale: bool,
+    /// How many holds the scale remembers (≥ 1): each hold's sums are forgotten by
+    /// `1 − 1 / null_scale_memory`. Default 10 holds, one return home while re-adapting, so an
+    /// undone change is forgotten within a few returns.
+    pub null_scale_memory: f64,
+    /// The scale's ridge `ρ` (≥ 0), per joint in units of its squared torque scale. Default
+    /// 0.001: holds that barely load the arm leave the scale near 0.
+    pub null_scale_ridge: f64,
+    /// The global part's share `a` in the correction (`k ĝ` in, and the load correction's
+    /// null-space part out, by `a`): 0 while the scale explains less than the first value of the
+    /// holds' gravity errors (`R²`), 1 above the second, linear between (0 ≤ lo < hi ≤ 1).
+    /// Default `[0.8, 0.95]`: heavier links measured `R²` 0.95–0.995, a payload at the hand
+    /// 0.2–0.7, and where the errors are not proportional to `ĝ` the load correction's
+    /// null-space part covers the path better than the holds alone (D43).
+    pub null_scale_explained: [f64; 2],
 }
 
 /// The partition: the forward model `ẍ = f(q, q̇, u)` (eqs. 32–33) whose receptive fields carry
@@ -345,6 +366,10 @@ impl Default for GravityConfig {
             null_support: 0.1,
             null_ridge: 0.1,
             null_min_samples: 100,
+            null_scale: false,
+            null_scale_memory: 10.0,
+            null_scale_ridge: 1e-3,
+            null_scale_explained: [0.8, 0.95],
         }
     }
 }

@@ -81,6 +81,22 @@ impl LearnerConfig {
         ensure(finite_at_least(g.null_ridge, 0.0), || {
             format!("gravity.null_ridge {} must be finite and ≥ 0", g.null_ridge)
         })?;
+        ensure(finite_at_least(g.null_scale_memory, 1.0), || {
+            format!(
+                "gravity.null_scale_memory {} must be finite and ≥ 1",
+                g.null_scale_memory
+            )
+        })?;
+        ensure(finite_at_least(g.null_scale_ridge, 0.0), || {
+            format!(
+                "gravity.null_scale_ridge {} must be finite and ≥ 0",
+                g.null_scale_ridge
+            )
+        })?;
+        let [lo, hi] = g.null_scale_explained;
+        ensure((0.0..hi).contains(&lo) && hi <= 1.0, || {
+            format!("gravity.null_scale_explained [{lo}, {hi}] must have 0 ≤ lo < hi ≤ 1")
+        })?;
         ensure(g.null_min_samples >= 1, || {
             "gravity.null_min_samples must be ≥ 1".into()
         })?;

@@ -218,7 +218,7 @@ impl Learner {
         if !models.command_gain(&self.features, &ws.acts, q, weights, &mut ws.a_hat) {
             return Ok(());
         }
-        if null_correction_into_z(&self.cfg, models, ws, q)? {
+        if null_correction_into_z(&self.cfg, models, ws, q, self.gravity_frozen, &self.load)? {
             for (v, z) in u.iter_mut().zip(&ws.z) {
                 *v += z;
             }

@@ -259,7 +259,10 @@ impl Step<'_> {
         }
         let known = models.blended_gain(self.features, &ws.acts, q, &mut ws.a_hat);
         // The command's null-space correction is part of its `u0` (`null_gravity.rs`).
-        if known && residual && null_correction_into_z(self.cfg, models, ws, q)? {
+        if known
+            && residual
+            && null_correction_into_z(self.cfg, models, ws, q, self.gravity_frozen, self.load)?
+        {
             for (o, z) in ws.u0.iter_mut().zip(&ws.z) {
                 *o += z;
             }

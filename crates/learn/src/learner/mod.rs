@@ -51,6 +51,7 @@ mod nominal;
 mod null_gravity;
 #[cfg(test)]
 mod null_gravity_tests;
+mod null_scale;
 mod null_space;
 mod projection;
 mod readapt;

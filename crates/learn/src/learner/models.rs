@@ -19,6 +19,9 @@ pub(crate) struct Models {
     /// The null-space correction's model (`gravity.null_correction`, `null_gravity.rs`): made
     /// at its first sample, so a controller trained without it can learn one later.
     pub gravity_null: Option<GravityModel>,
+    /// The null-space correction's global part (`gravity.null_scale`, `null_scale.rs`); saved
+    /// (format 13).
+    pub null_scale: super::null_scale::NullScale,
     pub forward: ForwardModel,
     pub locals: LocalControllers,
     /// Standard deviation of each joint's torque during the warm-up (N·m).
@@ -117,6 +120,7 @@ impl Models {
             gravity,
             gravity_static,
             gravity_null: None,
+            null_scale: Default::default(),
             forward,
             locals: LocalControllers::default(),
             g_static: vec![0.0; n],

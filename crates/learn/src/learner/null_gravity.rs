@@ -13,7 +13,13 @@
 //! (`docs/decisions.md`, D25: holds that retrained `ĝ` made the tracking worse). The relabelling
 //! counts the correction as part of `u0`, so neither the local controllers nor the load
 //! correction learn it.
+//!
+//! With the global scale (`null_scale.rs`) learned, `r(q) · S / (S + S0)` becomes
+//! `r(q) · S / (S + S0) + a (k ĝ(q) − c(q))`, `a` the scale's share: where one scale of `ĝ`
+//! explains the holds, it carries their gravity error to every posture, and the load correction
+//! keeps its task part only.
 
+use super::load::LoadCorrection;
 use super::nominal::gravity_into;
 use super::stats::Scratch;
 use super::{Learner, Models};
@@ -22,9 +28,18 @@ use crate::error::Result;
 use crate::gravity::GravityModel;
 use osrl_dynamics::Measurement;
 
+/// Whether the correction's global part learns and acts (`null_scale.rs`):
+/// `gravity.null_scale`, or a re-adapting learner with `adaptation.null_scale`.
+pub(crate) fn scale_on(cfg: &LearnerConfig) -> bool {
+    cfg.gravity.null_scale || (cfg.adaptation.enabled && cfg.adaptation.null_scale)
+}
+
 /// The faded correction at `q` into `ws.z`, projected with the `Â` in `ws.a_hat` (in the cost's
 /// metric); `false` (and `ws.z` unspecified) where there is none: the option off, no trustworthy
-/// field yet, or a singular `Â N⁻¹ Âᵀ`. Does not allocate.
+/// field yet and no global scale, or a singular `Â N⁻¹ Âᵀ`. With the global scale learned, the
+/// correction is `k ĝ(q) + r(q) − c(q)` before the projection: the null-space part of `u0` is
+/// then `ĝ`'s, the scale's and the holds' model's, and the load correction `c` (at the
+/// activations in `ws.acts`) keeps its task part only. Does not allocate.
 ///
 /// # Errors
 /// A model failure (a non-finite prediction).
@@ -33,19 +48,40 @@ pub(crate) fn null_correction_into_z(
     models: &mut Models,
     ws: &mut Scratch,
     q: &[f64],
+    frozen: bool,
+    load: &LoadCorrection,
 ) -> Result<bool> {
-    let Some(r) = models.gravity_null.as_mut() else {
-        return Ok(false);
-    };
     if !cfg.gravity.null_correction {
         return Ok(false);
     }
-    let Some(ln_s) = r.predict_everywhere(q, &mut ws.z)? else {
-        return Ok(false);
+    let share = match scale_on(cfg) {
+        true => models.null_scale.share(cfg.gravity.null_scale_explained),
+        false => 0.0,
     };
-    // S / (S + S0) = 1 / (1 + S0 / S), from the logarithm (no overflow or underflow).
-    let fade = 1.0 / (1.0 + (cfg.gravity.null_support.ln() - ln_s).exp());
-    ws.z.iter_mut().for_each(|v| *v *= fade);
+    let global = share > 0.0;
+    let local = match models.gravity_null.as_mut() {
+        Some(r) => r.predict_everywhere(q, &mut ws.z)?,
+        None => None,
+    };
+    match local {
+        Some(ln_s) => {
+            // S / (S + S0) = 1 / (1 + S0 / S), from the logarithm (no overflow or underflow).
+            let fade = 1.0 / (1.0 + (cfg.gravity.null_support.ln() - ln_s).exp());
+            ws.z.iter_mut().for_each(|v| *v *= fade);
+        }
+        None if global => ws.z.fill(0.0),
+        None => return Ok(false),
+    }
+    if global {
+        // z += a (k ĝ − c).
+        gravity_into(&cfg.gravity, Some(&mut *models), frozen, q, &mut ws.g_null)?;
+        ws.c_null.fill(0.0);
+        load.add_into(&ws.acts, &mut ws.c_null);
+        let k = models.null_scale.scale();
+        for ((z, g), c) in ws.z.iter_mut().zip(&ws.g_null).zip(&ws.c_null) {
+            *z += share * (k * g - c);
+        }
+    }
     Ok(super::metric::project_scratch_z(models.metric.as_ref(), ws))
 }
 
@@ -64,6 +100,66 @@ fn new_model(cfg: &LearnerConfig, n: usize, torque_scale: &[f64]) -> Result<Grav
         1.0,
         torque_scale,
     )
+}
+
+/// One hold's targets for the holds' model, in place of each row's `e` (rows `q0, q̇0, q1, q̇1,
+/// e, c, dt`, `e = u − ĝ(q1)`, `c` the load correction there): `e − c` without the global
+/// scale; with it (`null_scale.rs`) the scale first learns the hold if `learns`, then the
+/// targets are `e − a k ĝ(q1) − (1 − a) c` with the updated scale `k` and share `a`, what the
+/// global part and the load correction's remaining part leave. Allocates per hold.
+fn hold_targets(
+    cfg: &LearnerConfig,
+    models: &mut Models,
+    frozen: bool,
+    learns: bool,
+    rows: &mut [f64],
+    n: usize,
+) -> Result<()> {
+    let width = 6 * n + 1;
+    let on = scale_on(cfg);
+    let gate = cfg.gravity.null_scale_explained;
+    let mut g = Vec::new();
+    if on && (learns || models.null_scale.share(gate) > 0.0) {
+        let count = rows.len() / width;
+        g.resize(count * n, 0.0);
+        let mut e = vec![0.0; count * n];
+        for ((row, gr), er) in rows
+            .chunks_exact(width)
+            .zip(g.chunks_exact_mut(n))
+            .zip(e.chunks_exact_mut(n))
+        {
+            gravity_into(
+                &cfg.gravity,
+                Some(&mut *models),
+                frozen,
+                &row[2 * n..3 * n],
+                gr,
+            )?;
+            er.copy_from_slice(&row[4 * n..5 * n]);
+        }
+        if learns {
+            let gc = &cfg.gravity;
+            let (memory, ridge) = (gc.null_scale_memory, gc.null_scale_ridge);
+            (models.null_scale).learn_hold(&g, &e, &models.torque_scale, memory, ridge);
+        }
+    }
+    let share = match on {
+        true => models.null_scale.share(gate),
+        false => 0.0,
+    };
+    let k = models.null_scale.scale();
+    for (i, row) in rows.chunks_exact_mut(width).enumerate() {
+        let (e, c) = row[4 * n..6 * n].split_at_mut(n);
+        if share > 0.0 {
+            let gr = &g[i * n..(i + 1) * n];
+            for ((ej, cj), gj) in e.iter_mut().zip(c.iter()).zip(gr) {
+                *ej = *ej - share * k * gj - (1.0 - share) * cj;
+            }
+        } else {
+            e.iter_mut().zip(c.iter()).for_each(|(ej, cj)| *ej -= cj);
+        }
+    }
+    Ok(())
 }
 
 impl Learner {
@@ -89,8 +185,10 @@ impl Learner {
     }
 
     /// Keeps the transition `prev → cur` of a hold at a path posture for the null-space
-    /// correction if it is still (the static gate): the target `u − ĝ(q) − c(q)` at `cur`. The
-    /// correction learns a hold's samples at its end ([`Learner::end_hold`]).
+    /// correction if it is still (the static gate): the gravity error `u − ĝ(q)` and the load
+    /// correction `c(q)` at `cur`. The correction learns a hold's samples at its end
+    /// ([`Learner::end_hold`]), with the target `u − ĝ − c` (or, with the global scale, what it
+    /// leaves: `hold_targets`).
     ///
     /// # Errors
     /// A model failure; nothing before the models exist.
@@ -122,8 +220,8 @@ impl Learner {
             models.forward.activations(q, qd, cut, &mut ws.acts)?;
             self.load.add_into(&ws.acts, &mut ws.load_c);
         }
-        for (((p, ui), g), c) in ws.pi.iter_mut().zip(u).zip(&ws.z).zip(&ws.load_c) {
-            *p = ui - g - c;
+        for ((p, ui), g) in ws.pi.iter_mut().zip(u).zip(&ws.z) {
+            *p = ui - g;
         }
         let row = &mut self.hold.rows;
         row.extend_from_slice(prev.q.as_slice());
@@ -131,6 +229,7 @@ impl Learner {
         row.extend_from_slice(q);
         row.extend_from_slice(qd);
         row.extend_from_slice(&ws.pi);
+        row.extend_from_slice(&ws.load_c);
         row.push(dt);
         Ok(())
     }
@@ -146,9 +245,9 @@ impl Learner {
     /// # Errors
     /// A model failure (the model keeps the samples learned before it).
     pub fn end_hold(&mut self) -> Result<()> {
-        let rows = std::mem::take(&mut self.hold.rows);
+        let mut rows = std::mem::take(&mut self.hold.rows);
         let n = self.n;
-        let width = 5 * n + 1;
+        let width = 6 * n + 1;
         let super::State::Ready(models) = &mut self.state else {
             return Ok(());
         };
@@ -156,6 +255,9 @@ impl Learner {
             if models.gravity_null.is_none() {
                 models.gravity_null = Some(new_model(&self.cfg, n, &models.torque_scale)?);
             }
+            // The global scale learns while a change is re-adapted (or always, with the option).
+            let learns = self.cfg.gravity.null_scale || self.adapt.readapting();
+            hold_targets(&self.cfg, models, self.gravity_frozen, learns, &mut rows, n)?;
             let r = models.gravity_null.as_mut().expect("made above");
             // While a detected change is re-adapted, the postures already held must learn again.
             r.set_unbudgeted(self.adapt.readapting());
@@ -164,8 +266,8 @@ impl Learner {
                 let (qd0, rest) = rest.split_at(n);
                 let (q1, rest) = rest.split_at(n);
                 let (qd1, rest) = rest.split_at(n);
-                let (target, dt) = rest.split_at(n);
-                r.learn(q0, qd0, q1, qd1, target, dt[0])
+                let (target, rest) = rest.split_at(n);
+                r.learn(q0, qd0, q1, qd1, target, rest[n])
             })
         } else {
             Ok(())

@@ -87,3 +87,123 @@ fn the_correction_moves_the_command_in_the_null_space_only() {
     let (off, _) = command_and_gain(&mut loaded, &q);
     assert_eq!(off.map(f64::to_bits), before.map(f64::to_bits));
 }
+
+/// Null-space part of `v` under the 2×3 `Â` `a` (along the cross product of its rows), and the
+/// largest task-space part `|Â v|` relative to `|v|`.
+fn null_and_task(a: &[f64; 6], v: &[f64]) -> (f64, f64) {
+    let (r0, r1) = (&a[..3], &a[3..]);
+    let nv = [
+        r0[1] * r1[2] - r0[2] * r1[1],
+        r0[2] * r1[0] - r0[0] * r1[2],
+        r0[0] * r1[1] - r0[1] * r1[0],
+    ];
+    let nn = nv.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let task = [r0, r1]
+        .iter()
+        .map(|row| (0..3).map(|j| row[j] * v[j]).sum::<f64>().abs())
+        .fold(0.0, f64::max);
+    (
+        (0..3).map(|j| v[j] * nv[j] / nn).sum(),
+        task / norm.max(1e-300),
+    )
+}
+
+/// One hold of 300 still samples at `q` with the torque `u(ĝ)`, learned at its end.
+fn hold_with(
+    learner: &mut Learner,
+    last: &osrl_dynamics::Measurement,
+    u: impl Fn(f64, usize) -> f64,
+) {
+    let q = last.q.as_slice().to_vec();
+    let mut g = [0.0; 3];
+    learner.gravity(&q, &mut g).unwrap();
+    let mut prev = last.clone();
+    prev.qd.fill(0.0);
+    for (i, gi) in g.iter().enumerate() {
+        prev.u[i] = u(*gi, i);
+    }
+    for _ in 0..300 {
+        let mut cur = prev.clone();
+        cur.t += 0.002;
+        learner.learn_static_gravity(&prev, &cur).unwrap();
+        prev = cur;
+    }
+    learner.end_hold().unwrap();
+}
+
+/// The global scale (`gravity.null_scale`, `null_scale.rs`): holds at one posture whose torque is
+/// `1.3 ĝ` teach `k ≈ 0.3`, and at a posture the hold never visited the command then moves in
+/// the null space only, by the null part of `0.3 ĝ` there, where the holds' model alone carries
+/// the held posture's error; a saved and reloaded learner commands the same bits. Errors that
+/// are not proportional to `ĝ` (a constant offset) leave the scale's share at 0 and the command
+/// that of the learner without the scale, bit for bit.
+#[test]
+fn the_global_scale_carries_a_proportional_error_to_other_postures() {
+    let mut cfg = fixture::config();
+    cfg.gravity.null_correction = true;
+    let (learner, mut sim, last) = fixture::ready(cfg, 200, 2000);
+    // A posture of the sweep 0.8 s on, visited by the partition before (its period is 4.8 s).
+    let other = fixture::sweep(&mut learner.clone(), &mut sim, 400);
+    let qb = other.q.as_slice().to_vec();
+    let qa = last.q.as_slice();
+    let moved = qa
+        .iter()
+        .zip(&qb)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    assert!(
+        moved > 0.1,
+        "postures {qa:?} and {qb:?} are {moved} rad apart"
+    );
+    let mut scaled = learner.clone();
+    scaled.cfg.gravity.null_scale = true;
+    let mut plain = learner.clone();
+    let (before, a) = command_and_gain(&mut plain.clone(), &qb);
+    let mut gb = [0.0; 3];
+    plain.gravity(&qb, &mut gb).unwrap();
+    for l in [&mut scaled, &mut plain] {
+        hold_with(l, &last, |g, _| 1.3 * g);
+    }
+    let k = fixture::models(&mut scaled).null_scale.scale();
+    assert!((k - 0.3).abs() < 0.01, "k = {k}");
+    let want = null_and_task(&a, &gb.map(|g| 0.3 * g)).0;
+    for (name, l, tol) in [
+        ("scaled", &mut scaled, 0.05),
+        ("plain", &mut plain, f64::INFINITY),
+    ] {
+        let (after, a_after) = command_and_gain(l, &qb);
+        assert_eq!(a_after, a);
+        let du: Vec<f64> = (0..3).map(|j| after[j] - before[j]).collect();
+        let (null, task) = null_and_task(&a, &du);
+        assert!(task < 1e-9, "{name}: task part {task} of {du:?}");
+        let rel = (null - want).abs() / want.abs();
+        assert!(rel < tol, "{name}: null part {null} against 0.3 ĝ's {want}");
+        if name == "plain" {
+            // The holds' model alone is further off at the posture it never held.
+            assert!(rel > 0.1, "the holds' model alone: {null} against {want}");
+        }
+    }
+    let mut loaded = Learner::from_bytes(&scaled.to_bytes().unwrap()).unwrap();
+    assert_eq!(
+        command_and_gain(&mut loaded, &qb).0.map(f64::to_bits),
+        command_and_gain(&mut scaled, &qb).0.map(f64::to_bits)
+    );
+
+    // A constant offset is not proportional to ĝ: no share, the same bits as without the scale.
+    let mut scaled = learner.clone();
+    scaled.cfg.gravity.null_scale = true;
+    let mut plain = learner.clone();
+    let delta = [1.0, -0.5, 0.8];
+    for l in [&mut scaled, &mut plain] {
+        hold_with(l, &last, |g, i| g + delta[i]);
+    }
+    let gate = scaled.cfg.gravity.null_scale_explained;
+    let s = &fixture::models(&mut scaled).null_scale;
+    let share = s.share(gate);
+    assert!(share == 0.0 && s.explained() < 0.8, "R² {}", s.explained());
+    assert_eq!(
+        command_and_gain(&mut scaled, &qb).0.map(f64::to_bits),
+        command_and_gain(&mut plain, &qb).0.map(f64::to_bits)
+    );
+}

@@ -58,6 +58,10 @@ pub(crate) struct Scratch {
     /// measured `ẍ` (`load.rs`).
     pub load_c: Vec<f64>,
     pub pi: Vec<f64>,
+    /// `ĝ(q)` for the null-space correction's global part (`null_scale.rs`).
+    pub g_null: Vec<f64>,
+    /// The load correction `c(q)` for the same part.
+    pub c_null: Vec<f64>,
     /// `Â` (m×n), and the m-vector and m×m matrix of its null-space algebra.
     pub a_hat: Vec<f64>,
     pub y: Vec<f64>,
@@ -90,6 +94,8 @@ impl Scratch {
             target: vec![0.0; n],
             load_c: vec![0.0; n],
             pi: vec![0.0; n],
+            g_null: vec![0.0; n],
+            c_null: vec![0.0; n],
             a_hat: vec![0.0; m * n],
             y: vec![0.0; m],
             s: vec![0.0; m * m],
