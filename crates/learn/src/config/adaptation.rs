@@ -116,8 +116,10 @@ pub struct AdaptationConfig {
     /// controller trained without it learns one for the changed robot. Default false.
     pub null_correction: bool,
     /// With the re-adaptation enabled, the null-space correction's global part
-    /// (`gravity.null_scale`) is on: the holds teach one scale `k` of `ĝ`, `k ĝ(q)` joins the
-    /// correction everywhere, and the load correction keeps its task part only. Default true.
+    /// (`gravity.null_scale`, its settings there) is on: while a change is re-adapted the holds
+    /// teach one scale `k` of `ĝ`, and `a k ĝ(q)` joins the correction everywhere while the load
+    /// correction keeps `1 − a` of its null-space part, `a` the share from the fit's `R²`.
+    /// Needs `gravity.null_correction`. Default true.
     /// Why: heavier links change the gravity torques in proportion to `ĝ` at every posture,
     /// where the holds' model knows only the held ones (sarcos7's heavier links, D45).
     pub null_scale: bool,

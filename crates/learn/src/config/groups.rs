@@ -86,12 +86,13 @@ pub struct GravityConfig {
     /// all at its end. Default 100 (0.2 s at 2 ms): a hold cut short, or a field fitted to a
     /// few samples of an arm still settling, would move the command on a guess.
     pub null_min_samples: usize,
-    /// The correction's global part (`learner/null_scale.rs`), also in training: one scale `k`
-    /// fitted to the holds' gravity errors `u − ĝ` adds `k ĝ(q)` everywhere, the LWPR model
-    /// learns what it leaves, and the load correction keeps its task part only. Default false
-    /// (`adaptation.null_scale` turns it on while re-adapting). Why: a change of the masses
-    /// moves the gravity torques in proportion to `ĝ` at every posture, where the model's fields
-    /// know only the held ones.
+    /// The correction's global part (`learner/null_scale.rs`; needs `null_correction`), learned
+    /// at every hold, also in training: one scale `k` fitted to the holds' gravity errors
+    /// `u − ĝ` adds `a k ĝ(q)` everywhere and the load correction keeps `1 − a` of its null-space
+    /// part, `a` the share from the fit's `R²` (`null_scale_explained`); the LWPR model learns
+    /// what they leave. Default false (`adaptation.null_scale` learns it while a change is
+    /// re-adapted). Why: a change of the masses moves the gravity torques in proportion to `ĝ`
+    /// at every posture, where the model's fields know only the held ones.
     pub null_scale: bool,
     /// How many holds the scale remembers (≥ 1): each hold's sums are forgotten by
     /// `1 − 1 / null_scale_memory`. Default 10 holds, one return home while re-adapting, so an

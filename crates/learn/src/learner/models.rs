@@ -155,7 +155,7 @@ impl Models {
         {
             g.check_loaded()?;
         }
-        Ok(())
+        self.null_scale.check().map_err(crate::LearnError::Load)
     }
 
     /// `Â = Σ w_i Â_i(q) / Σ w_i` (m×n row-major into `a`) over the activations `acts` of fields

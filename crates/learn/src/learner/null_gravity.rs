@@ -17,7 +17,8 @@
 //! With the global scale (`null_scale.rs`) learned, `r(q) · S / (S + S0)` becomes
 //! `r(q) · S / (S + S0) + a (k ĝ(q) − c(q))`, `a` the scale's share: where one scale of `ĝ`
 //! explains the holds, it carries their gravity error to every posture, and the load correction
-//! keeps its task part only.
+//! keeps its task part only. At a held posture `u0`'s null-space part is the measured gravity's
+//! for the `(a, k)` of that hold (the fields keep the targets they were taught).
 
 use super::load::LoadCorrection;
 use super::nominal::gravity_into;

@@ -195,3 +195,68 @@ fn the_global_scale_carries_a_proportional_error_to_other_postures() {
         command_and_gain(&mut plain, &qb).0.map(f64::to_bits)
     );
 }
+
+/// The load correction `c` under the global scale: with the share at 1 (holds whose torque is
+/// `1.3 ĝ`), `c`'s null-space part leaves the command and its task part stays, so the command
+/// differs from that of the same learner without `c` by `c − (I − Â⁺Â) c`; with the share at
+/// 0 (a constant offset), the command with `c` is that of the learner without the scale, bit
+/// for bit.
+#[test]
+fn the_scale_replaces_the_load_corrections_null_space_part_by_its_share() {
+    let mut cfg = fixture::config();
+    cfg.gravity.null_correction = true;
+    let (learner, _, last) = fixture::ready(cfg, 200, 2000);
+    let q = last.q.as_slice().to_vec();
+    let c = [0.7, -0.4, 0.5];
+    let with_c = |mut l: Learner| {
+        let cut = l.cfg.partition.activation_cutoff;
+        let mut acts = Vec::new();
+        let models = fixture::models(&mut l);
+        models
+            .forward
+            .activations(&q, &[0.0; 3], cut, &mut acts)
+            .unwrap();
+        l.load.learn(&acts, &c, &c, 1.0);
+        assert!(!l.load.is_empty());
+        l
+    };
+    let mut scaled = learner.clone();
+    scaled.cfg.gravity.null_scale = true;
+    let delta = [1.0, -0.5, 0.8];
+    // Share 1: the difference `c` makes is its task part alone.
+    let (mut loaded, mut bare) = (with_c(scaled.clone()), scaled.clone());
+    for l in [&mut loaded, &mut bare] {
+        hold_with(l, &last, |g, _| 1.3 * g);
+    }
+    let gate = scaled.cfg.gravity.null_scale_explained;
+    assert_eq!(fixture::models(&mut loaded).null_scale.share(gate), 1.0);
+    let (u_c, a) = command_and_gain(&mut loaded, &q);
+    let (u_0, a0) = command_and_gain(&mut bare, &q);
+    assert_eq!(a, a0);
+    let du: Vec<f64> = (0..3).map(|j| u_c[j] - u_0[j]).collect();
+    let (null, _) = null_and_task(&a, &du);
+    let (c_null, _) = null_and_task(&a, &c);
+    assert!(
+        null.abs() < 1e-9 && c_null.abs() > 0.1,
+        "{null} of c's {c_null}"
+    );
+    for row in [&a[..3], &a[3..]] {
+        let (t_du, t_c): (f64, f64) = (0..3).fold((0.0, 0.0), |(x, y), j| {
+            (x + row[j] * du[j], y + row[j] * c[j])
+        });
+        assert!(
+            (t_du - t_c).abs() < 1e-9 * t_c.abs().max(1.0),
+            "{t_du} vs {t_c}"
+        );
+    }
+    // Share 0: the learner with `c` commands as without the scale.
+    let (mut loaded, mut plain) = (with_c(scaled), with_c(learner));
+    for l in [&mut loaded, &mut plain] {
+        hold_with(l, &last, |g, i| g + delta[i]);
+    }
+    assert_eq!(fixture::models(&mut loaded).null_scale.share(gate), 0.0);
+    assert_eq!(
+        command_and_gain(&mut loaded, &q).0.map(f64::to_bits),
+        command_and_gain(&mut plain, &q).0.map(f64::to_bits)
+    );
+}

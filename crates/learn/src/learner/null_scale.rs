@@ -72,7 +72,44 @@ impl NullScale {
         self.c = keep * self.c + c * per_row;
         self.weight = keep * self.weight + 1.0;
         self.holds += 1;
-        self.k = self.b / (self.a + ridge * n as f64 * self.weight);
+        let den = self.a + ridge * n as f64 * self.weight;
+        // Holds that load nothing with no ridge: no information, no scale.
+        self.k = if den > 0.0 && den.is_finite() {
+            self.b / den
+        } else {
+            0.0
+        };
+    }
+
+    /// Checks a loaded scale: finite sums, `A`, `C`, `W` ≥ 0, `|B| ≤ √(A C)` (Cauchy–Schwarz,
+    /// so `R²` ≤ 1 and `k` is bounded), `k` finite.
+    ///
+    /// # Errors
+    /// The first inconsistent value, named.
+    pub fn check(&self) -> Result<(), String> {
+        let values = [
+            ("A", self.a),
+            ("B", self.b),
+            ("C", self.c),
+            ("W", self.weight),
+        ];
+        if let Some((name, v)) = values.iter().find(|(_, v)| !v.is_finite()) {
+            return Err(format!("null scale: {name} = {v} is not finite"));
+        }
+        if self.a < 0.0 || self.c < 0.0 || self.weight < 0.0 || !self.k.is_finite() {
+            return Err(format!(
+                "null scale: A = {}, C = {}, W = {} must be ≥ 0 and k = {} finite",
+                self.a, self.c, self.weight, self.k
+            ));
+        }
+        if self.b * self.b > self.a * self.c * (1.0 + 1e-9) + f64::MIN_POSITIVE {
+            return Err(format!(
+                "null scale: B² = {} exceeds A C = {}",
+                self.b * self.b,
+                self.a * self.c
+            ));
+        }
+        Ok(())
     }
 
     /// The share of the holds' gravity errors that `k ĝ` explains, `R² = k B / C` in [0, 1]
@@ -122,6 +159,16 @@ mod tests {
         let mut r = NullScale::default();
         r.learn_hold(&vec![0.0; 40], &e, &scale, 10.0, 1e-3);
         assert_eq!(r.scale(), 0.0);
+        // Without a ridge, holds that load nothing leave the scale at 0, not NaN.
+        let mut z = NullScale::default();
+        z.learn_hold(&vec![0.0; 40], &e, &scale, 10.0, 0.0);
+        assert_eq!(z.scale(), 0.0);
+        assert!(z.check().is_ok() && s.check().is_ok());
+        let mut bad = s.clone();
+        bad.b = 1e300;
+        assert!(bad.check().unwrap_err().contains("exceeds"));
+        bad.b = f64::NAN;
+        assert!(bad.check().unwrap_err().contains("B = NaN"));
         // The change undone: the old holds fade by 0.9 per hold, so k falls to about 0.3 · 0.9⁵⁰ / 10.
         let none = vec![0.0; 40];
         for _ in 0..50 {
