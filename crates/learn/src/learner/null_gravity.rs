@@ -104,63 +104,45 @@ fn new_model(cfg: &LearnerConfig, n: usize, torque_scale: &[f64]) -> Result<Grav
 }
 
 /// One hold's targets for the holds' model, in place of each row's `e` (rows `q0, q̇0, q1, q̇1,
-/// e, c, dt`, `e = u − ĝ(q1)`, `c` the load correction there): `e − c` without the global
+/// e, c, ĝ, dt`, `e = u − ĝ(q1)`, `c` the load correction there): `e − c` without the global
 /// scale; with it (`null_scale.rs`) the scale first learns the hold if `learns`, then the
 /// targets are `e − a k ĝ(q1) − (1 − a) c` with the updated scale `k` and share `a`, what the
 /// global part and the load correction's remaining part leave. Allocates per hold.
 fn hold_targets(
     cfg: &LearnerConfig,
     models: &mut Models,
-    frozen: bool,
     learns: bool,
     rows: &mut [f64],
     n: usize,
-) -> Result<()> {
-    let width = 6 * n + 1;
+) {
+    let width = 7 * n + 1;
     let on = scale_on(cfg);
     let gate = cfg.gravity.null_scale_explained;
-    let mut g = Vec::new();
-    if on && (learns || models.null_scale.share(gate) > 0.0) {
-        let count = rows.len() / width;
-        g.resize(count * n, 0.0);
-        let mut e = vec![0.0; count * n];
-        for ((row, gr), er) in rows
+    if on && learns {
+        let (g, e): (Vec<f64>, Vec<f64>) = rows
             .chunks_exact(width)
-            .zip(g.chunks_exact_mut(n))
-            .zip(e.chunks_exact_mut(n))
-        {
-            gravity_into(
-                &cfg.gravity,
-                Some(&mut *models),
-                frozen,
-                &row[2 * n..3 * n],
-                gr,
-            )?;
-            er.copy_from_slice(&row[4 * n..5 * n]);
-        }
-        if learns {
-            let gc = &cfg.gravity;
-            let (memory, ridge) = (gc.null_scale_memory, gc.null_scale_ridge);
-            (models.null_scale).learn_hold(&g, &e, &models.torque_scale, memory, ridge);
-        }
+            .flat_map(|row| (0..n).map(move |j| (row[6 * n + j], row[4 * n + j])))
+            .unzip();
+        let gc = &cfg.gravity;
+        let (memory, ridge) = (gc.null_scale_memory, gc.null_scale_ridge);
+        (models.null_scale).learn_hold(&g, &e, &models.torque_scale, memory, ridge);
     }
     let share = match on {
         true => models.null_scale.share(gate),
         false => 0.0,
     };
     let k = models.null_scale.scale();
-    for (i, row) in rows.chunks_exact_mut(width).enumerate() {
-        let (e, c) = row[4 * n..6 * n].split_at_mut(n);
+    for row in rows.chunks_exact_mut(width) {
+        let (e, rest) = row[4 * n..7 * n].split_at_mut(n);
+        let (c, g) = rest.split_at(n);
         if share > 0.0 {
-            let gr = &g[i * n..(i + 1) * n];
-            for ((ej, cj), gj) in e.iter_mut().zip(c.iter()).zip(gr) {
+            for ((ej, cj), gj) in e.iter_mut().zip(c).zip(g) {
                 *ej = *ej - share * k * gj - (1.0 - share) * cj;
             }
         } else {
-            e.iter_mut().zip(c.iter()).for_each(|(ej, cj)| *ej -= cj);
+            e.iter_mut().zip(c).for_each(|(ej, cj)| *ej -= cj);
         }
     }
-    Ok(())
 }
 
 impl Learner {
@@ -231,6 +213,7 @@ impl Learner {
         row.extend_from_slice(qd);
         row.extend_from_slice(&ws.pi);
         row.extend_from_slice(&ws.load_c);
+        row.extend_from_slice(&ws.z);
         row.push(dt);
         Ok(())
     }
@@ -248,7 +231,7 @@ impl Learner {
     pub fn end_hold(&mut self) -> Result<()> {
         let mut rows = std::mem::take(&mut self.hold.rows);
         let n = self.n;
-        let width = 6 * n + 1;
+        let width = 7 * n + 1;
         let super::State::Ready(models) = &mut self.state else {
             return Ok(());
         };
@@ -258,7 +241,7 @@ impl Learner {
             }
             // The global scale learns while a change is re-adapted (or always, with the option).
             let learns = self.cfg.gravity.null_scale || self.adapt.readapting();
-            hold_targets(&self.cfg, models, self.gravity_frozen, learns, &mut rows, n)?;
+            hold_targets(&self.cfg, models, learns, &mut rows, n);
             let r = models.gravity_null.as_mut().expect("made above");
             // While a detected change is re-adapted, the postures already held must learn again.
             r.set_unbudgeted(self.adapt.readapting());
@@ -268,7 +251,7 @@ impl Learner {
                 let (q1, rest) = rest.split_at(n);
                 let (qd1, rest) = rest.split_at(n);
                 let (target, rest) = rest.split_at(n);
-                r.learn(q0, qd0, q1, qd1, target, rest[n])
+                r.learn(q0, qd0, q1, qd1, target, rest[2 * n])
             })
         } else {
             Ok(())
