@@ -69,6 +69,14 @@ pub struct AdaptationConfig {
     /// Default 1: it keeps converging after the local dynamics fit again (0: it learns at the
     /// re-adaptation's strength and stops with it; D33, D34; D35 for the rollback).
     pub load_floor: f64,
+    /// Least strength at which the local controllers' statistics keep forgetting
+    /// (`controller_forgetting`) once a change has been detected (in [0, 1]; 0: only while the
+    /// strength is above 0). Default 0.1: a memory of about 10,000 samples (20 s at 500 Hz) at
+    /// activation 1.
+    /// Why: the load correction keeps learning after the level has fallen (`load_floor`), and
+    /// with it the controllers' residual targets `u − u0 − c` move; statistics that never forget
+    /// keep the targets of the correction as it was (`docs/decisions.md`, D47).
+    pub controller_floor: f64,
     /// What the error ratio compares (see [`AdaptationSource`]). Default `dynamics`.
     pub signal: AdaptationSource,
     /// Floor on a local controller's mean squared residual for the `command` signal, in N·m
@@ -160,6 +168,7 @@ impl Default for AdaptationConfig {
             load_time_constant: 1.0,
             freeze_partition: false,
             load_floor: 1.0,
+            controller_floor: 0.1,
             signal: AdaptationSource::Dynamics,
             command_floor: 0.05,
             observer_seconds: 0.02,
@@ -222,6 +231,10 @@ impl AdaptationConfig {
             ),
             ("load_floor", (0.0..=1.0).contains(&self.load_floor)),
             (
+                "controller_floor",
+                (0.0..=1.0).contains(&self.controller_floor),
+            ),
+            (
                 "command_floor",
                 self.command_floor > 0.0 && self.command_floor.is_finite(),
             ),
@@ -256,23 +269,27 @@ impl AdaptationConfig {
 mod tests {
     use super::AdaptationConfig;
 
-    /// `load_floor` is a strength: 0 and 1 pass, outside [0, 1] and NaN are refused by name.
+    /// `load_floor` and `controller_floor` are strengths: 0 and 1 pass, outside [0, 1] and NaN
+    /// are refused by name.
     #[test]
-    fn the_load_floor_is_checked() {
-        for ok in [0.0, 0.3, 1.0] {
-            let c = AdaptationConfig {
-                load_floor: ok,
-                ..AdaptationConfig::default()
-            };
-            assert!(c.validate().is_ok(), "{ok}");
-        }
-        for bad in [-0.1, 1.5, f64::NAN] {
-            let c = AdaptationConfig {
-                load_floor: bad,
-                ..AdaptationConfig::default()
-            };
-            let e = c.validate().unwrap_err().to_string();
-            assert!(e.contains("load_floor"), "{e}");
+    fn the_strength_floors_are_checked() {
+        type Set = fn(&mut AdaptationConfig, f64);
+        let floors: [(&str, Set); 2] = [
+            ("load_floor", |c, v| c.load_floor = v),
+            ("controller_floor", |c, v| c.controller_floor = v),
+        ];
+        for (name, set) in floors {
+            for ok in [0.0, 0.3, 1.0] {
+                let mut c = AdaptationConfig::default();
+                set(&mut c, ok);
+                assert!(c.validate().is_ok(), "{name} {ok}");
+            }
+            for bad in [-0.1, 1.5, f64::NAN] {
+                let mut c = AdaptationConfig::default();
+                set(&mut c, bad);
+                let e = c.validate().unwrap_err().to_string();
+                assert!(e.contains(name), "{e}");
+            }
         }
     }
 

@@ -83,12 +83,24 @@ impl AdaptationSignal {
     }
 
     /// The extra forgetting factors `(dynamics, controller)` for a field with activation `w`.
+    /// The controllers forget at least at `controller_floor` once a change has been detected.
     pub(crate) fn decay(&self, cfg: &AdaptationConfig, w: f64) -> (f64, f64) {
         let e = self.strength * w;
+        let ec = self.controller_strength(cfg) * w;
         (
             cfg.dynamics_forgetting.powf(e),
-            cfg.controller_forgetting.powf(e),
+            cfg.controller_forgetting.powf(ec),
         )
+    }
+
+    /// The strength at which the controllers forget: the strength, at least `controller_floor`
+    /// once a change has been detected.
+    pub(crate) fn controller_strength(&self, cfg: &AdaptationConfig) -> f64 {
+        if self.detected {
+            self.strength.max(cfg.controller_floor)
+        } else {
+            self.strength
+        }
     }
 
     /// The cost a sample of cost `r` is weighted with: `(1 − a) r`. A change of the robot
@@ -155,6 +167,35 @@ mod tests {
         assert!((level(0.5, 2.0, 1.0) - 2.0).abs() < 1e-9);
         assert_eq!(level(0.0, 0.0, 0.0), 0.0);
         assert!((level_after(&cfg, 20.0, 2.0, 1.0, true) - 2.0).abs() < 1e-9);
+    }
+
+    /// The controllers forget at `controller_floor` once a change has been detected and the
+    /// strength has fallen below it; the local dynamics follow the strength alone; nothing
+    /// forgets before a detection.
+    #[test]
+    fn the_controllers_forget_at_their_floor_after_a_detection() {
+        let cfg = AdaptationConfig {
+            controller_floor: 0.3,
+            ..AdaptationConfig::default()
+        };
+        let mut s = AdaptationSignal::default();
+        assert_eq!(s.decay(&cfg, 0.5), (1.0, 1.0));
+        s.detected = true;
+        let (fd, fc) = s.decay(&cfg, 0.5);
+        assert_eq!(fd, 1.0);
+        assert_eq!(fc, cfg.controller_forgetting.powf(0.15));
+        assert!(fc < 1.0);
+        s.strength = 0.8;
+        let (fd, fc) = s.decay(&cfg, 0.5);
+        assert_eq!(fd, cfg.dynamics_forgetting.powf(0.4));
+        assert_eq!(fc, cfg.controller_forgetting.powf(0.4));
+        // A floor of 0 leaves the factors to the strength.
+        s.strength = 0.0;
+        let off = AdaptationConfig {
+            controller_floor: 0.0,
+            ..AdaptationConfig::default()
+        };
+        assert_eq!(s.decay(&off, 0.5), (1.0, 1.0));
     }
 
     /// The level after many checks of the ratios given.

@@ -348,6 +348,7 @@ impl Step<'_> {
         let check =
             ad.enabled && now.is_multiple_of(ad.check_every as u64) && (!difference || consecutive);
         let adapting = ad.enabled && self.adapt.strength > 0.0;
+        let forget_controllers = ad.enabled && self.adapt.controller_strength(ad) > 0.0;
         let pace = Pace {
             solve_every: self.cfg.dynamics.solve_every as u64,
             solve_always: adapting,
@@ -405,6 +406,8 @@ impl Step<'_> {
                 let (fd, fc) = self.adapt.decay(ad, a.w);
                 local.dynamics.decay(fd);
                 local.rwr.decay(fc);
+            } else if forget_controllers {
+                local.rwr.decay(self.adapt.decay(ad, a.w).1);
             }
             if dyn_now {
                 let w = if dc.weight_power == 1.0 {
