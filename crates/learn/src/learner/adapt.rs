@@ -38,6 +38,12 @@ pub struct AdaptationSignal {
     /// The training driver's disturbance observer, `(‖d̄‖ / offset_floor)²` with `d̄` its slow
     /// estimate, while an episode runs (0: none).
     pub offset_ratio: f64,
+    /// Whether the signal was started for a learner that continues (`Learner::reset_adaptation`:
+    /// `osrl adapt`, E8) rather than for one in its first training: only then do the
+    /// controllers keep forgetting at `controller_floor` after a detection. A learner in its
+    /// first training reads its own learning as a change (`docs/decisions.md`, D46), and
+    /// forgetting from then on cost planar3's `--change-at` runs their tracking (D47).
+    pub continuation: bool,
 }
 
 impl Default for AdaptationSignal {
@@ -51,6 +57,7 @@ impl Default for AdaptationSignal {
             detected: false,
             cap: 1.0,
             offset_ratio: 0.0,
+            continuation: false,
         }
     }
 }
@@ -94,9 +101,9 @@ impl AdaptationSignal {
     }
 
     /// The strength at which the controllers forget: the strength, at least `controller_floor`
-    /// once a change has been detected.
+    /// once a change has been detected by a continuing learner.
     pub(crate) fn controller_strength(&self, cfg: &AdaptationConfig) -> f64 {
-        if self.detected {
+        if self.detected && self.continuation {
             self.strength.max(cfg.controller_floor)
         } else {
             self.strength
@@ -169,18 +176,27 @@ mod tests {
         assert!((level_after(&cfg, 20.0, 2.0, 1.0, true) - 2.0).abs() < 1e-9);
     }
 
-    /// The controllers forget at `controller_floor` once a change has been detected and the
-    /// strength has fallen below it; the local dynamics follow the strength alone; nothing
-    /// forgets before a detection.
+    /// A continuing learner's controllers forget at `controller_floor` once a change has been
+    /// detected and the strength has fallen below it; the local dynamics follow the strength
+    /// alone; nothing forgets before a detection, nor in a learner's first training.
     #[test]
     fn the_controllers_forget_at_their_floor_after_a_detection() {
         let cfg = AdaptationConfig {
             controller_floor: 0.3,
             ..AdaptationConfig::default()
         };
-        let mut s = AdaptationSignal::default();
+        let mut s = AdaptationSignal {
+            continuation: true,
+            ..AdaptationSignal::default()
+        };
         assert_eq!(s.decay(&cfg, 0.5), (1.0, 1.0));
         s.detected = true;
+        // A learner in its first training does not keep forgetting.
+        let first = AdaptationSignal {
+            continuation: false,
+            ..s
+        };
+        assert_eq!(first.decay(&cfg, 0.5), (1.0, 1.0));
         let (fd, fc) = s.decay(&cfg, 0.5);
         assert_eq!(fd, 1.0);
         assert_eq!(fc, cfg.controller_forgetting.powf(0.15));

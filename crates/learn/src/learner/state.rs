@@ -120,9 +120,13 @@ impl Learner {
     }
 
     /// Starts the re-adaptation's running level afresh (it is not saved with the learner, so a
-    /// run that continues a saved or an in-memory learner calls this to behave the same).
+    /// run that continues a saved or an in-memory learner calls this to behave the same), for a
+    /// continuing learner (`AdaptationSignal::continuation`).
     pub fn reset_adaptation(&mut self) {
-        self.adapt = AdaptationSignal::default();
+        self.adapt = AdaptationSignal {
+            continuation: true,
+            ..AdaptationSignal::default()
+        };
     }
 
     /// Sets the re-adaptation settings (e.g. on a loaded controller).
