@@ -70,10 +70,10 @@ pub struct AdaptationConfig {
     /// re-adaptation's strength and stops with it; D33, D34; D35 for the rollback).
     pub load_floor: f64,
     /// Least strength at which the local controllers' statistics keep forgetting
-    /// (`controller_forgetting`) once a continuing learner (`Learner::reset_adaptation`) has
-    /// detected a change (in [0, 1]; 0: only while the
-    /// strength is above 0). Default 0.1: a memory of about 10,000 samples (20 s at 500 Hz) at
-    /// activation 1.
+    /// (`controller_forgetting`) once a continuing learner (`Learner::reset_adaptation`: `osrl
+    /// adapt`, E8) has detected a change, until its next reset (in [0, 1]; 0: only while the
+    /// strength is above 0; no effect in a learner's first training, `osrl train --change-at`).
+    /// Default 0.1: a memory of about 10,000 samples (20 s at 500 Hz) at activation 1.
     /// Why: the load correction keeps learning after the level has fallen (`load_floor`), and
     /// with it the controllers' residual targets `u − u0 − c` move; statistics that never forget
     /// keep the targets of the correction as it was (`docs/decisions.md`, D47).

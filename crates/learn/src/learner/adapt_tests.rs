@@ -91,3 +91,50 @@ fn the_observer_runs_while_re_adapting_or_when_asked() {
         ..d()
     }));
 }
+
+/// After a detected change (with the floor 0), with the strength then held at 0 (the cap at 0),
+/// a continuing learner (`reset_adaptation`) keeps its controllers forgetting at
+/// `controller_floor`: its command after the same sweep differs from the one with the floor 0.
+/// A learner in its first training (no `reset_adaptation`) gives the same bits with either
+/// floor.
+#[test]
+fn only_a_continuing_learner_keeps_its_controllers_forgetting() {
+    let run = |floor: f64, continuing: bool| {
+        let (mut learner, mut sim, _) = fixture::ready(fixture::config(), 200, 2000);
+        let change: RobotChange = "payload=0.5".parse().unwrap();
+        sim.set_model(change.apply(&robots::planar3()).unwrap())
+            .unwrap();
+        let cfg = |controller_floor| AdaptationConfig {
+            enabled: true,
+            controller_floor,
+            ..AdaptationConfig::default()
+        };
+        learner.set_adaptation(cfg(0.0)).unwrap();
+        if continuing {
+            learner.reset_adaptation();
+        }
+        assert_eq!(learner.adaptation().continuation, continuing);
+        learner.observe_offset(10.0);
+        fixture::sweep(&mut learner, &mut sim, 500);
+        assert!(learner.adaptation().detected);
+        learner.adapt.cap = 0.0;
+        learner.observe_offset(0.0);
+        learner.set_adaptation(cfg(floor)).unwrap();
+        let last = fixture::sweep(&mut learner, &mut sim, 1500);
+        assert_eq!(learner.adaptation().strength, 0.0);
+        let mut u = [0.0; 3];
+        let xdd = [0.1, -0.2];
+        learner
+            .command::<rand_chacha::ChaCha8Rng>(
+                last.q.as_slice(),
+                last.qd.as_slice(),
+                &xdd[..learner.m],
+                None,
+                &mut u,
+            )
+            .unwrap();
+        u
+    };
+    assert_ne!(run(0.1, true), run(0.0, true));
+    assert_eq!(run(0.1, false), run(0.0, false));
+}

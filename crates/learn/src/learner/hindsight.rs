@@ -319,7 +319,8 @@ impl Step<'_> {
     /// Every active field: its local dynamics learn `u → ẍ`, its controller the hindsight sample
     /// with cost `r`, and the M-steps run when due (counted). With `adaptation.enabled`, the
     /// fields first predict `ẍ` (every `check_every` steps) for the re-adaptation's level, and
-    /// forget and learn at its strength (`adapt.rs`).
+    /// forget and learn at its strength — the controllers of a continuing learner, after a
+    /// detection, at least at `controller_floor` (`adapt.rs`).
     fn update_locals(&mut self, prev: &Measurement, cur: &Measurement, r: f64) -> Result<()> {
         let (q, qd, u) = (cur.q.as_slice(), cur.qd.as_slice(), cur.u.as_slice());
         let (q0, qd0, u0) = (prev.q.as_slice(), prev.qd.as_slice(), prev.u.as_slice());
