@@ -7,9 +7,9 @@
 //! weights new samples by a cost shrunk by `1 − a` and may move its controller further per
 //! M-step (trust region × `1 + a (s − 1)`). When the level falls back, `a` is released over
 //! `release_seconds`; a continuing learner's controllers keep forgetting at strength
-//! `adaptation.controller_floor` after a detection. Fields the arm does not visit forget nothing. Until a change has been
-//! detected, the training driver's disturbance observer feeds the level too, and the driver may
-//! roll the learner back (`readapt.rs`).
+//! `adaptation.controller_floor` after a detection. Fields the arm does not visit forget
+//! nothing. Until a change has been detected, the training driver's disturbance observer feeds
+//! the level too, and the driver may roll the learner back (`readapt.rs`).
 
 use crate::config::AdaptationConfig;
 use serde::Serialize;

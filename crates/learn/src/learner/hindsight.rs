@@ -349,7 +349,8 @@ impl Step<'_> {
         let check =
             ad.enabled && now.is_multiple_of(ad.check_every as u64) && (!difference || consecutive);
         let adapting = ad.enabled && self.adapt.strength > 0.0;
-        let forget_controllers = ad.enabled && self.adapt.controller_strength(ad) > 0.0;
+        // The controllers forget at least while the strength is above 0 (`adapt.rs`).
+        let forgetting = ad.enabled && self.adapt.controller_strength(ad) > 0.0;
         let pace = Pace {
             solve_every: self.cfg.dynamics.solve_every as u64,
             solve_always: adapting,
@@ -403,12 +404,11 @@ impl Step<'_> {
                 se += a.w * e;
                 sv += a.w * v * self.m as f64;
             }
-            if adapting {
+            if forgetting {
+                // At strength 0 the dynamics' factor is 1, which changes nothing.
                 let (fd, fc) = self.adapt.decay(ad, a.w);
                 local.dynamics.decay(fd);
                 local.rwr.decay(fc);
-            } else if forget_controllers {
-                local.rwr.decay(self.adapt.decay(ad, a.w).1);
             }
             if dyn_now {
                 let w = if dc.weight_power == 1.0 {
