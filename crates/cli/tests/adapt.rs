@@ -73,3 +73,62 @@ fn bad_changes_are_refused_before_anything_runs() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The last line of stdout as JSON.
+fn last_json(out: &std::process::Output) -> serde_json::Value {
+    let text = String::from_utf8_lossy(&out.stdout);
+    serde_json::from_str(text.lines().last().unwrap()).unwrap()
+}
+
+/// `osrl eval --change` evaluates on the changed robot: `none` gives the unchanged robot's
+/// numbers, a payload other ones (its `u*` is eq. 7 on the loaded arm), and a payload the arm
+/// cannot hold is refused before anything runs.
+#[test]
+fn eval_measures_on_the_changed_robot() {
+    let dir = std::env::temp_dir().join(format!("osrl-eval-change-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let model = dir.join("p3.osrl");
+    let st = osrl()
+        .args(["train", "--robot", "planar3", "--minutes", "0.1", "--out"])
+        .arg(&model)
+        .output()
+        .unwrap();
+    assert!(
+        st.status.success(),
+        "{}",
+        String::from_utf8_lossy(&st.stderr)
+    );
+    let eval = |change: Option<&str>| {
+        let mut c = osrl();
+        c.args(["eval", "--json", "--model"]).arg(&model);
+        if let Some(ch) = change {
+            c.args(["--change", ch]);
+        }
+        c.output().unwrap()
+    };
+    let plain = eval(None);
+    assert!(
+        plain.status.success(),
+        "{}",
+        String::from_utf8_lossy(&plain.stderr)
+    );
+    let (plain, none) = (last_json(&plain), last_json(&eval(Some("none"))));
+    let loaded = last_json(&eval(Some("payload=0.5")));
+    assert_eq!(plain["change"], serde_json::Value::Null);
+    assert_eq!(loaded["change"], "payload=0.5");
+    for key in [
+        "tracking_rms_mm",
+        "command_nmse",
+        "max_command_step_analytical",
+    ] {
+        assert_eq!(plain[key], none[key], "{key}");
+        assert_ne!(plain[key], loaded[key], "{key}");
+    }
+    let o = eval(Some("payload=500"));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success() && err.contains("cannot hold itself"),
+        "{err}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

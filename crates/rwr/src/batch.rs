@@ -4,7 +4,7 @@ use crate::config::RwrConfig;
 use crate::error::{Result, RwrError};
 use crate::policy::{check_finite, check_len, LinearGaussianPolicy};
 use crate::stats::{Solver, Stats};
-use crate::weights::normalized_weights;
+use crate::weights::{external_ess, normalized_weights};
 use nalgebra::DMatrix;
 use serde::{Deserialize, Serialize};
 
@@ -157,7 +157,8 @@ impl BatchRwr {
             .cfg
             .next_sigma(self.policy.sigma(), sq / (d as f64 * self.stats.sw));
         let mean_cost = self.stats.mean_cost();
-        let tau_next = self.cfg.next_tau(self.tau, mean_cost, ess);
+        let ess_ext = external_ess(ext, n);
+        let tau_next = self.cfg.next_tau(self.tau, mean_cost, ess, ess_ext);
         let info = StepInfo {
             tau_used: self.tau,
             tau_next,

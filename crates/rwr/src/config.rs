@@ -23,6 +23,16 @@ pub struct RwrConfig {
     /// `τ` down until the weights spread again (a safeguard not in the paper). `0` = off.
     /// Default 0.
     pub min_ess: f64,
+    /// Floor on the reward weighting's share of the effective sample size: when the weights of
+    /// an M-step have an effective sample size below this share of the one that the external
+    /// weights alone give (`(Σa)²/Σa²`, the activations of a receptive field), the next `τ` is
+    /// at most `τ·ess/(share·ess_ext)`. On statistics that forget, eq. 28 lets `τ` grow without
+    /// bound where the costs have a density that does not vanish at zero (a squared residual
+    /// of one or two dimensions), however many samples arrive; this floor is relative, so it
+    /// leaves a controller alone that merely has few samples. The online form applies it only
+    /// once its statistics have forgotten (`forgetting < 1` or [`crate::OnlineRwr::decay`]):
+    /// without forgetting the old samples anchor eq. 28. In [0, 1]; `0` = off. Default 0.
+    pub min_ess_share: f64,
     /// Initial exploration standard deviation `σ_0` (action). Must be > 0. Default 1.0.
     pub sigma_init: f64,
     /// Update `σ` by eq. 24 (`true`) or keep it at `sigma_init` (`false`). Default `true`.
@@ -58,6 +68,7 @@ impl Default for RwrConfig {
             adapt_tau: true,
             tau_max: None,
             min_ess: 0.0,
+            min_ess_share: 0.0,
             sigma_init: 1.0,
             update_sigma: true,
             sigma_min: 1e-6,
@@ -93,6 +104,10 @@ impl RwrConfig {
         check(e.is_finite() && e >= 0.0, || {
             format!("min_ess must be finite and >= 0, got {e}")
         })?;
+        let h = self.min_ess_share;
+        check((0.0..=1.0).contains(&h), || {
+            format!("min_ess_share must be in [0, 1], got {h}")
+        })?;
         let s = self.sigma_init;
         check(s.is_finite() && s > 0.0, || {
             format!("sigma_init must be finite and > 0, got {s}")
@@ -117,10 +132,11 @@ impl RwrConfig {
     }
 
     /// The next `τ` after an M-step: eq. 28, `τ_{k+1} = Σ w_i / Σ w_i r_i`, given the weighted
-    /// mean cost `mean_cost = Σ w_i r_i / Σ w_i` and the effective sample size `ess` of the
-    /// weights, then the `min_ess` and `tau_max` safeguards. Returns `tau` unchanged when `τ` is
-    /// fixed, or when eq. 28 is not finite (all weighted costs zero).
-    pub fn next_tau(&self, tau: f64, mean_cost: f64, ess: f64) -> f64 {
+    /// mean cost `mean_cost = Σ w_i r_i / Σ w_i`, the effective sample size `ess` of the
+    /// weights and `ess_ext` of the external weights alone, then the `min_ess`,
+    /// `min_ess_share` and `tau_max` safeguards. Returns `tau` unchanged when `τ` is fixed, or
+    /// when eq. 28 is not finite (all weighted costs zero).
+    pub fn next_tau(&self, tau: f64, mean_cost: f64, ess: f64, ess_ext: f64) -> f64 {
         if !self.adapt_tau {
             return tau;
         }
@@ -130,6 +146,10 @@ impl RwrConfig {
         }
         if self.min_ess > 0.0 && ess < self.min_ess {
             next = next.min(tau * ess / self.min_ess);
+        }
+        let floor = self.min_ess_share * ess_ext;
+        if floor > 0.0 && ess < floor {
+            next = next.min(tau * ess / floor);
         }
         if let Some(cap) = self.tau_max {
             next = next.min(cap);

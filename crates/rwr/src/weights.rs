@@ -31,6 +31,22 @@ pub fn check_ext(a: f64) -> Result<()> {
     }
 }
 
+/// Effective sample size `(Σa)²/Σa²` of the external weights of `n` samples (`n` without
+/// them; 0 when they are all zero): the reference of [`crate::RwrConfig::min_ess_share`].
+pub fn external_ess(ext: Option<&[f64]>, n: usize) -> f64 {
+    match ext {
+        None => n as f64,
+        Some(e) => {
+            let (s, s2) = e.iter().fold((0.0, 0.0), |(s, s2), a| (s + a, s2 + a * a));
+            if s2 > 0.0 {
+                s * s / s2
+            } else {
+                0.0
+            }
+        }
+    }
+}
+
 /// Normalised weights `q_i` of eq. 25/29, computed in log space so that they neither underflow
 /// nor overflow however large `τ r` gets: `q_i = exp(l_i − max l) / Σ_j exp(l_j − max l)` with
 /// `l_i = ln a_i − τ r_i`. `ext = None` means all `a_i = 1`. Writes `out` (length n) and returns

@@ -40,6 +40,14 @@ fn invalid_configs_are_rejected() {
             ..Default::default()
         },
         RwrConfig {
+            min_ess_share: 1.5,
+            ..Default::default()
+        },
+        RwrConfig {
+            min_ess_share: f64::NAN,
+            ..Default::default()
+        },
+        RwrConfig {
             sigma_init: 0.0,
             ..Default::default()
         },

@@ -1,6 +1,7 @@
 //! `osrl eval`: runs a saved learned controller without exploration on the simulated robot it
-//! was trained for (from the model file), along its training trajectory or another one, and
-//! compares it at every step with the analytical optimum `u*` (eq. 7, `N = I`, true model).
+//! was trained for (from the model file), or that robot changed (`--change`, as `osrl adapt`),
+//! along its training trajectory or another one, and compares it at every step with the
+//! analytical optimum `u*` (eq. 7, `N = I`, the true — changed — model).
 //! With `--out DIR`: `eval.csv`, `path.svg/png`, `commands.svg/png` (learned vs analytical per
 //! joint over the last cycle, paper Fig. 2c) and `metrics.json`.
 
@@ -8,7 +9,7 @@ use crate::config::Config;
 use crate::util::{print_json, trajectory_kind};
 use anyhow::{bail, Context, Result};
 use osrl_control::family::Region;
-use osrl_control::{TrajectoryConfig, TrajectoryKind};
+use osrl_control::{RobotChange, TrajectoryConfig, TrajectoryKind};
 use osrl_experiments::stats::{measured, EvalSummary};
 use osrl_experiments::Setup;
 use osrl_learn::SavedModel;
@@ -28,6 +29,11 @@ pub struct Args {
     /// section is accepted.
     #[arg(long)]
     pub config: Option<PathBuf>,
+    /// Evaluate on the robot changed by this spec (the grammar of `osrl adapt --change`:
+    /// `payload=0.5`, `mass=1.3`, ...): e.g. a controller adapted by `osrl adapt` on the robot
+    /// it adapted to. `u*` is eq. 7 on the changed model. Default: the unchanged robot.
+    #[arg(long)]
+    pub change: Option<RobotChange>,
     /// Simulated seconds, rounded down to whole periods; the first period is the warm-up
     /// (default: 3 periods, 12 s on the default figure-8).
     #[arg(long)]
@@ -124,9 +130,14 @@ pub fn run(a: Args) -> Result<()> {
         ),
     };
     let setup = setup.with_eval_periods(periods)?;
+    // The truth: the profiled model (its postures, gains, torque limits), the one the training
+    // evaluated, or that model changed; the change is checked before anything runs.
+    let truth = match &a.change {
+        Some(c) => osrl_experiments::adapt::checked_change(&setup, c)?,
+        None => setup.model().clone(),
+    };
     let (info, mut learner, model) = saved.into_parts();
-    // The profiled model (its postures, gains, torque limits): the one the training evaluated.
-    let mut ev = setup.evaluator(setup.model())?;
+    let mut ev = setup.evaluator(&truth)?;
     ev.keep_series = true;
     let res = ev.evaluate(&mut learner).context("evaluation")?;
     let kind = format!("{:?}", setup.trajectory_config().kind).to_lowercase();
@@ -142,6 +153,7 @@ pub fn run(a: Args) -> Result<()> {
     for (k, v) in [
         ("robot", model.name().into()),
         ("trajectory", kind.into()),
+        ("change", a.change.as_ref().map(|c| c.to_string()).into()),
         ("eval_seconds", ev.seconds.into()),
         ("n_local_models", learner.n_local_models().into()),
         ("sim_training_minutes", info.sim_training_minutes.into()),
@@ -154,8 +166,12 @@ pub fn run(a: Args) -> Result<()> {
         o.insert(k.into(), v);
     }
     println!(
-        "{} · {:?} · {:.1} s · model trained {:.1} simulated minutes · {} local models",
+        "{}{} · {:?} · {:.1} s · model trained {:.1} simulated minutes · {} local models",
         model.name(),
+        a.change
+            .as_ref()
+            .map(|c| format!(" changed by {c}"))
+            .unwrap_or_default(),
         setup.trajectory_config().kind,
         ev.seconds,
         info.sim_training_minutes,
