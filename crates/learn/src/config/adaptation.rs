@@ -196,70 +196,123 @@ impl AdaptationConfig {
     /// # Errors
     /// [`LearnError::InvalidConfig`] naming the first field out of range.
     pub fn validate(&self) -> Result<()> {
+        let finite = |x: f64, ok: bool| ok && x.is_finite();
         let unit = |x: f64| x > 0.0 && x <= 1.0;
+        let closed = |x: f64| (0.0..=1.0).contains(&x);
+        let (on, full) = (self.on_ratio, self.full_ratio);
+        // (field, value, accepted, whether it is)
         let checks = [
-            ("check_every", self.check_every >= 1),
+            (
+                "check_every",
+                self.check_every as f64,
+                "≥ 1",
+                self.check_every >= 1,
+            ),
             (
                 "time_constant",
-                self.time_constant > 0.0 && self.time_constant.is_finite(),
+                self.time_constant,
+                "> 0 s",
+                finite(self.time_constant, self.time_constant > 0.0),
             ),
-            ("on_ratio", self.on_ratio > 1.0 && self.on_ratio.is_finite()),
-            (
-                "full_ratio",
-                self.full_ratio > self.on_ratio && self.full_ratio.is_finite(),
-            ),
+            ("on_ratio", on, "> 1", finite(on, on > 1.0)),
+            ("full_ratio", full, "> on_ratio", finite(full, full > on)),
             (
                 "residual_floor",
-                self.residual_floor > 0.0 && self.residual_floor.is_finite(),
+                self.residual_floor,
+                "> 0",
+                finite(self.residual_floor, self.residual_floor > 0.0),
             ),
             (
                 "residual_floor_difference",
-                self.residual_floor_difference > 0.0 && self.residual_floor_difference.is_finite(),
+                self.residual_floor_difference,
+                "> 0",
+                finite(
+                    self.residual_floor_difference,
+                    self.residual_floor_difference > 0.0,
+                ),
             ),
             (
                 "release_seconds",
-                self.release_seconds > 0.0 && self.release_seconds.is_finite(),
+                self.release_seconds,
+                "> 0 s",
+                finite(self.release_seconds, self.release_seconds > 0.0),
             ),
-            ("dynamics_forgetting", unit(self.dynamics_forgetting)),
-            ("controller_forgetting", unit(self.controller_forgetting)),
+            (
+                "dynamics_forgetting",
+                self.dynamics_forgetting,
+                "in (0, 1]",
+                unit(self.dynamics_forgetting),
+            ),
+            (
+                "controller_forgetting",
+                self.controller_forgetting,
+                "in (0, 1]",
+                unit(self.controller_forgetting),
+            ),
             (
                 "load_time_constant",
-                self.load_time_constant > 0.0 && self.load_time_constant.is_finite(),
+                self.load_time_constant,
+                "> 0 s",
+                finite(self.load_time_constant, self.load_time_constant > 0.0),
             ),
             (
                 "trust_scale",
-                self.trust_scale >= 1.0 && self.trust_scale.is_finite(),
+                self.trust_scale,
+                "≥ 1",
+                finite(self.trust_scale, self.trust_scale >= 1.0),
             ),
-            ("load_floor", (0.0..=1.0).contains(&self.load_floor)),
+            (
+                "load_floor",
+                self.load_floor,
+                "in [0, 1]",
+                closed(self.load_floor),
+            ),
             (
                 "controller_floor",
-                (0.0..=1.0).contains(&self.controller_floor),
+                self.controller_floor,
+                "in [0, 1]",
+                closed(self.controller_floor),
             ),
             (
                 "command_floor",
-                self.command_floor > 0.0 && self.command_floor.is_finite(),
+                self.command_floor,
+                "> 0",
+                finite(self.command_floor, self.command_floor > 0.0),
             ),
             (
                 "observer_seconds",
-                self.observer_seconds >= 0.0 && self.observer_seconds.is_finite(),
+                self.observer_seconds,
+                "≥ 0 s",
+                finite(self.observer_seconds, self.observer_seconds >= 0.0),
             ),
             (
                 "observer_max",
-                self.observer_max > 0.0 && self.observer_max.is_finite(),
+                self.observer_max,
+                "> 0",
+                finite(self.observer_max, self.observer_max > 0.0),
             ),
             (
                 "rollback_damping",
-                (0.0..=1.0).contains(&self.rollback_damping),
+                self.rollback_damping,
+                "in [0, 1]",
+                closed(self.rollback_damping),
             ),
-            ("max_strength", unit(self.max_strength)),
+            (
+                "max_strength",
+                self.max_strength,
+                "in (0, 1]",
+                unit(self.max_strength),
+            ),
             (
                 "offset_floor",
-                self.offset_floor >= 0.0 && self.offset_floor.is_finite(),
+                self.offset_floor,
+                "≥ 0",
+                finite(self.offset_floor, self.offset_floor >= 0.0),
             ),
         ];
-        match checks.iter().find(|(_, ok)| !ok) {
-            Some((what, _)) => Err(LearnError::InvalidConfig(format!(
-                "adaptation.{what} is out of range: {self:?}"
+        match checks.iter().find(|c| !c.3) {
+            Some((what, value, accepted, _)) => Err(LearnError::InvalidConfig(format!(
+                "adaptation.{what} = {value}: accepted {accepted} (finite)"
             ))),
             None => Ok(()),
         }
@@ -271,7 +324,7 @@ mod tests {
     use super::AdaptationConfig;
 
     /// `load_floor` and `controller_floor` are strengths: 0 and 1 pass, outside [0, 1] and NaN
-    /// are refused by name.
+    /// are refused by name, value and accepted range.
     #[test]
     fn the_strength_floors_are_checked() {
         type Set = fn(&mut AdaptationConfig, f64);
@@ -289,7 +342,9 @@ mod tests {
                 let mut c = AdaptationConfig::default();
                 set(&mut c, bad);
                 let e = c.validate().unwrap_err().to_string();
-                assert!(e.contains(name), "{e}");
+                // The field, the value given and what is accepted.
+                let value = format!("{name} = {bad}");
+                assert!(e.contains(&value) && e.contains("in [0, 1]"), "{e}");
             }
         }
     }
