@@ -115,6 +115,7 @@ fn eval_measures_on_the_changed_robot() {
     let (plain, none) = (last_json(&plain), last_json(&eval(Some("none"))));
     let loaded = last_json(&eval(Some("payload=0.5")));
     assert_eq!(plain["change"], serde_json::Value::Null);
+    assert_eq!(none["change"], serde_json::Value::Null);
     assert_eq!(loaded["change"], "payload=0.5");
     for key in [
         "tracking_rms_mm",

@@ -30,8 +30,8 @@ pub const MAGIC: &[u8; 8] = b"OSRLLC\0\0";
 /// estimated in the warm-up is saved with the models (before, a loaded learner used `N = I`).
 /// 11: the static gravity model's samples per posture (`StaticGate::max_samples_per_posture`).
 /// 12: the null-space correction's model (`gravity.null_correction`). 13: its global scale
-/// (`gravity.null_scale`). 14: each regression's external weights' sums and
-/// `min_ess_share` (`rwr::OnlineRwr`).
+/// (`gravity.null_scale`). 14: each regression's external weights' sums, whether its
+/// statistics have forgotten, and `min_ess_share` (`rwr::OnlineRwr`).
 pub const FORMAT_VERSION: u32 = 14;
 
 /// Everything a learner is, as stored (the config as JSON text, so its untagged enums survive).

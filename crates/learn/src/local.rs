@@ -340,6 +340,7 @@ fn dynamics_config(cfg: RwrConfig, spec: &LocalSpec) -> RwrConfig {
         tau_init: 1.0,
         ridge: 1e-6,
         min_ess: 0.0,
+        min_ess_share: 0.0,
         tau_max: None,
         ridge_to_previous: false,
         forgetting: spec.dynamics_forgetting,

@@ -58,6 +58,7 @@ mod cholesky;
 mod cholesky_x86;
 mod config;
 mod error;
+mod external;
 mod held;
 #[cfg(target_arch = "x86_64")]
 mod held_x86;

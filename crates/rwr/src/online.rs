@@ -3,6 +3,7 @@
 use crate::batch::StepInfo;
 use crate::config::RwrConfig;
 use crate::error::Result;
+use crate::external::External;
 use crate::policy::{check_finite, check_len, LinearGaussianPolicy};
 use crate::stats::{Solver, Stats};
 use crate::weights::{check_cost, check_ext, log_weight};
@@ -28,13 +29,8 @@ pub struct OnlineRwr {
     /// True statistics = stored × exp(log_scale); `−∞` while empty.
     log_scale: f64,
     ln_forget: f64,
-    /// `Σ a` and `Σ a²` of the external weights alone, decayed as the statistics: the effective
-    /// sample size that `min_ess_share` compares the reward weighting's with.
-    ext_sum: f64,
-    ext_sum2: f64,
-    /// Whether the statistics have forgotten since they were last cleared (`forgetting < 1`
-    /// or [`Self::decay`]): only then does `min_ess_share` act.
-    forgotten: bool,
+    /// The external weights alone, decayed as the statistics (`min_ess_share`'s reference).
+    external: External,
     solver: Solver,
 }
 
@@ -57,9 +53,7 @@ impl OnlineRwr {
             policy,
             stats: Stats::new(p, d),
             log_scale: f64::NEG_INFINITY,
-            ext_sum: 0.0,
-            ext_sum2: 0.0,
-            forgotten: false,
+            external: External::default(),
             solver: Solver::new(p, d),
         })
     }
@@ -111,25 +105,14 @@ impl OnlineRwr {
     /// Effective sample size `(Σa)²/Σa²` of the external weights alone (decayed as the
     /// statistics); 0 when empty.
     pub fn ess_external(&self) -> f64 {
-        if self.ext_sum2 > 0.0 {
-            self.ext_sum * self.ext_sum / self.ext_sum2
-        } else {
-            0.0
-        }
+        self.external.ess()
     }
 
     /// Forgets all samples (keeps `θ`, `σ`, `τ`).
     pub fn clear(&mut self) {
         self.stats.clear();
         self.log_scale = f64::NEG_INFINITY;
-        (self.ext_sum, self.ext_sum2) = (0.0, 0.0);
-        self.forgotten = false;
-    }
-
-    /// Multiplies the external weights' sums by `f` (so `Σa²` by `f²`).
-    fn scale_external(&mut self, f: f64) {
-        self.ext_sum *= f;
-        self.ext_sum2 *= f * f;
+        self.external.clear();
     }
 
     /// E-step for one sample `(φ, u, r)` with external weight `a ≥ 0`: decays the statistics by
@@ -144,12 +127,8 @@ impl OnlineRwr {
         check_cost(r)?;
         check_ext(a)?;
         self.log_scale += self.ln_forget;
-        if self.cfg.forgetting < 1.0 {
-            self.scale_external(self.cfg.forgetting);
-            self.forgotten = true;
-        }
-        self.ext_sum += a;
-        self.ext_sum2 += a * a;
+        self.external.forget(self.cfg.forgetting);
+        self.external.add(a);
         let l = log_weight(self.tau, r, a);
         if l == f64::NEG_INFINITY {
             return Ok(());
@@ -183,8 +162,7 @@ impl OnlineRwr {
     pub fn decay(&mut self, factor: f64) {
         if factor > 0.0 && factor < 1.0 {
             self.log_scale += factor.ln();
-            self.scale_external(factor);
-            self.forgotten = true;
+            self.external.forget(factor);
         }
     }
 
@@ -246,12 +224,7 @@ impl OnlineRwr {
         };
         let sigma = self.cfg.next_sigma(self.policy.sigma(), msr);
         let (ess, mean_cost) = (self.stats.ess(), self.stats.mean_cost());
-        // Without forgetting the old samples anchor eq. 28: the share floor waits for it.
-        let ess_ext = if self.forgotten {
-            self.ess_external()
-        } else {
-            0.0
-        };
+        let ess_ext = self.external.floor_reference();
         let tau_next = self.cfg.next_tau(self.tau, mean_cost, ess, ess_ext);
         let info = StepInfo {
             tau_used: self.tau,

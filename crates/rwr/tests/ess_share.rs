@@ -120,6 +120,11 @@ fn without_forgetting_the_floor_waits() {
         d.tau_next
     );
     assert!(d.tau_next < k.tau_next);
+    // `clear` forgets that it forgot: eq. 28 again.
+    decayed.clear();
+    fill(&mut decayed);
+    let c = decayed.update().unwrap();
+    assert_eq!(c.tau_next, 1.0 / c.mean_cost);
 }
 
 #[test]
@@ -132,9 +137,13 @@ fn the_external_ess_is_its_definition() {
     }
     let (s, s2) = (1.75_f64, 0.25 + 1.0 + 0.0625);
     assert!((r.ess_external() - s * s / s2).abs() < 1e-12);
-    // Extra forgetting scales every weight alike: the ESS stays.
+    // Extra forgetting scales every weight alike: the ESS stays; a sample after it counts in
+    // full against the decayed ones.
     r.decay(0.5);
     assert!((r.ess_external() - s * s / s2).abs() < 1e-12);
+    r.observe(&[1.0], &[0.0], 1.0, 1.0).unwrap();
+    let (t, t2) = (0.5 * s + 1.0, 0.25 * s2 + 1.0);
+    assert!((r.ess_external() - t * t / t2).abs() < 1e-12);
     r.clear();
     assert_eq!(r.ess_external(), 0.0);
 }
@@ -153,10 +162,18 @@ fn the_batch_form_compares_with_its_external_weights() {
     };
     let mut free = BatchRwr::new(2, 1, cfg(0.0)).unwrap();
     let f = free.em_step(&phi, &u, &costs, None).unwrap();
-    let mut floored = BatchRwr::new(2, 1, cfg(0.5)).unwrap();
-    let g = floored.em_step(&phi, &u, &costs, None).unwrap();
     assert!(f.ess < 1.01, "{}", f.ess);
     assert_eq!(f.tau_next, 1.0 / f.mean_cost);
-    // τ ≤ τ · ess / (share · n).
+    // Without external weights the reference is n: τ ≤ τ · ess / (share · n).
+    let mut floored = BatchRwr::new(2, 1, cfg(0.5)).unwrap();
+    let g = floored.em_step(&phi, &u, &costs, None).unwrap();
     assert!((g.tau_next - 50.0 * g.ess / (0.5 * n as f64)).abs() < 1e-12);
+    // With them, their own ESS: half the samples at weight 1, half at 0.1.
+    let ext: Vec<f64> = (0..n).map(|i| if i % 2 == 0 { 1.0 } else { 0.1 }).collect();
+    let (sa, sa2) = (20.0 * 1.1, 20.0 * 1.01);
+    let ess_ext = sa * sa / sa2;
+    assert!((rwr::weights::external_ess(Some(&ext), n) - ess_ext).abs() < 1e-12);
+    let mut weighted = BatchRwr::new(2, 1, cfg(0.5)).unwrap();
+    let h = weighted.em_step(&phi, &u, &costs, Some(&ext)).unwrap();
+    assert!((h.tau_next - 50.0 * h.ess / (0.5 * ess_ext)).abs() < 1e-12 * h.tau_next);
 }

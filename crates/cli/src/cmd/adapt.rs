@@ -3,7 +3,8 @@
 //! simulated robot itself). No babbling: on-policy learning along the controller's training path
 //! from the first step, with the learner's re-adaptation switched on (`docs/learner.md`,
 //! "Re-adaptation"). Saves the adapted controller (its file names the unchanged robot: `osrl
-//! eval` on it measures what the adaptation did to the unchanged arm; its re-adaptation stays
+//! eval` on it measures what the adaptation did to the unchanged arm, `osrl eval --change` the
+//! same spec measures it on the changed one; its re-adaptation stays
 //! on in the file, so that evaluation, `osrl simulate` and the Python `LearnedController` run it
 //! with the disturbance observer). With `--json` the last stdout line has every key of `osrl
 //! train --json` plus `change`, `tracking_rms_mm_before`, `tracking_rms_mm_before_observer`

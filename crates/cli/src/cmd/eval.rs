@@ -132,7 +132,9 @@ pub fn run(a: Args) -> Result<()> {
     let setup = setup.with_eval_periods(periods)?;
     // The truth: the profiled model (its postures, gains, torque limits), the one the training
     // evaluated, or that model changed; the change is checked before anything runs.
-    let truth = match &a.change {
+    // `--change none` is the unchanged robot, reported as such.
+    let change = a.change.filter(|c| !c.is_none());
+    let truth = match &change {
         Some(c) => osrl_experiments::adapt::checked_change(&setup, c)?,
         None => setup.model().clone(),
     };
@@ -153,7 +155,7 @@ pub fn run(a: Args) -> Result<()> {
     for (k, v) in [
         ("robot", model.name().into()),
         ("trajectory", kind.into()),
-        ("change", a.change.as_ref().map(|c| c.to_string()).into()),
+        ("change", change.as_ref().map(|c| c.to_string()).into()),
         ("eval_seconds", ev.seconds.into()),
         ("n_local_models", learner.n_local_models().into()),
         ("sim_training_minutes", info.sim_training_minutes.into()),
@@ -168,10 +170,7 @@ pub fn run(a: Args) -> Result<()> {
     println!(
         "{}{} · {:?} · {:.1} s · model trained {:.1} simulated minutes · {} local models",
         model.name(),
-        a.change
-            .as_ref()
-            .map(|c| format!(" changed by {c}"))
-            .unwrap_or_default(),
+        changed_by(&change),
         setup.trajectory_config().kind,
         ev.seconds,
         info.sim_training_minutes,
@@ -194,8 +193,9 @@ pub fn run(a: Args) -> Result<()> {
     }
     if let Some(dir) = &a.out {
         let title = format!(
-            "{}: learned vs analytical commands over one cycle",
-            model.name()
+            "{}{}: learned vs analytical commands over one cycle",
+            model.name(),
+            changed_by(&change)
         );
         let (n, axes) = (model.nq(), model.task_axes());
         let per = setup.steps_per_period();
@@ -206,6 +206,14 @@ pub fn run(a: Args) -> Result<()> {
         print_json(&json);
     }
     Ok(())
+}
+
+/// ` changed by SPEC`, or nothing for the unchanged robot.
+fn changed_by(change: &Option<RobotChange>) -> String {
+    change
+        .as_ref()
+        .map(|c| format!(" changed by {c}"))
+        .unwrap_or_default()
 }
 
 /// One line of the evaluation's metrics.

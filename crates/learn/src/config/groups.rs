@@ -145,9 +145,9 @@ pub struct ControllerConfig {
     /// Reward-weighted regression of each local controller (own `τ_i`, `σ_i`). Default `τ0`
     /// 0.1, `σ0` 0.5 N·m, `σ_min` 0.05, forgetting 1 (hindsight targets are stationary), ridge
     /// 1e-4, `min_ess` 10 (the M-step's own floor on the weights' effective sample size),
-    /// `min_ess_share` 0.1 (once a controller's statistics forget, while re-adapting, its
-    /// weights keep a tenth of the effective sample size the activations alone give: eq. 28's
-    /// `τ` diverges there otherwise),
+    /// `min_ess_share` 0.1 (once a controller's statistics forget, while re-adapting, the next
+    /// `τ` is pulled down whenever its weights keep less than a tenth of the effective sample
+    /// size the activations alone give: eq. 28's `τ` diverges there otherwise),
     /// trust region 0.05 N·m (one M-step moves a controller's commands by at most that, RMS).
     pub rwr: RwrConfig,
     /// Effective sample size of a local controller's last M-step at which it counts as trained
