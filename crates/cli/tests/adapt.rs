@@ -6,15 +6,12 @@ fn osrl() -> Command {
     Command::new(env!("CARGO_BIN_EXE_osrl"))
 }
 
-/// Unknown fields and a negative mass factor are refused while the arguments are parsed; a
-/// payload beyond the torque limits once the model is loaded; a config that sets the saved
-/// learner's settings too; no output file is written.
-#[test]
-fn bad_changes_are_refused_before_anything_runs() {
-    let dir = std::env::temp_dir().join(format!("osrl-adapt-test-{}", std::process::id()));
+/// A fresh directory `NAME-PID` and a planar3 controller trained there for 0.1 simulated
+/// minutes (`p3.osrl`).
+fn tiny_controller(name: &str) -> (std::path::PathBuf, std::path::PathBuf) {
+    let dir = std::env::temp_dir().join(format!("{name}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let model = dir.join("p3.osrl");
-    let out = dir.join("adapted.osrl");
     let st = osrl()
         .args(["train", "--robot", "planar3", "--minutes", "0.1", "--out"])
         .arg(&model)
@@ -25,6 +22,16 @@ fn bad_changes_are_refused_before_anything_runs() {
         "{}",
         String::from_utf8_lossy(&st.stderr)
     );
+    (dir, model)
+}
+
+/// Unknown fields and a negative mass factor are refused while the arguments are parsed; a
+/// payload beyond the torque limits once the model is loaded; a config that sets the saved
+/// learner's settings too; no output file is written.
+#[test]
+fn bad_changes_are_refused_before_anything_runs() {
+    let (dir, model) = tiny_controller("osrl-adapt-test");
+    let out = dir.join("adapted.osrl");
     for (spec, word) in [
         ("weight=2", "unknown key 'weight'"),
         ("mass=-1.3", "mass"),
@@ -85,19 +92,7 @@ fn last_json(out: &std::process::Output) -> serde_json::Value {
 /// cannot hold is refused before anything runs.
 #[test]
 fn eval_measures_on_the_changed_robot() {
-    let dir = std::env::temp_dir().join(format!("osrl-eval-change-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let model = dir.join("p3.osrl");
-    let st = osrl()
-        .args(["train", "--robot", "planar3", "--minutes", "0.1", "--out"])
-        .arg(&model)
-        .output()
-        .unwrap();
-    assert!(
-        st.status.success(),
-        "{}",
-        String::from_utf8_lossy(&st.stderr)
-    );
+    let (dir, model) = tiny_controller("osrl-eval-change");
     let eval = |change: Option<&str>| {
         let mut c = osrl();
         c.args(["eval", "--json", "--model"]).arg(&model);
