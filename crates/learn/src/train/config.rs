@@ -193,51 +193,131 @@ impl TrainConfig {
         let b = &self.babble;
         let finite_pos = |x: f64| x > 0.0 && x.is_finite();
         let finite_nonneg = |x: f64| x >= 0.0 && x.is_finite();
+        let v = |x: &dyn std::fmt::Debug| format!("{x:?}");
+        let (pos, nonneg) = ("> 0, finite", "≥ 0, finite");
+        // (setting, its value, what is accepted, whether it is)
         let checks = [
-            ("minutes", finite_nonneg(self.minutes)),
-            ("babble.minutes", finite_nonneg(b.minutes)),
-            ("babble.spread", b.spread.is_none_or(finite_pos)),
+            (
+                "minutes",
+                v(&self.minutes),
+                nonneg,
+                finite_nonneg(self.minutes),
+            ),
+            (
+                "babble.minutes",
+                v(&b.minutes),
+                nonneg,
+                finite_nonneg(b.minutes),
+            ),
+            (
+                "babble.spread",
+                v(&b.spread),
+                "unset or > 0, finite",
+                b.spread.is_none_or(finite_pos),
+            ),
             (
                 "babble.move_time",
+                v(&b.move_time),
+                "[lo, hi] with 0 < lo ≤ hi, finite",
                 b.move_time[0] > 0.0
                     && b.move_time[0] <= b.move_time[1]
                     && b.move_time[1].is_finite(),
             ),
-            ("babble.gain_scale", finite_pos(b.gain_scale)),
-            ("babble.noise", finite_nonneg(b.noise)),
-            ("babble.settle", finite_nonneg(b.settle)),
-            ("babble.correlation_time", finite_nonneg(b.correlation_time)),
-            ("episode_seconds", finite_pos(self.episode_seconds)),
-            ("reset_error", self.reset_error > 0.0),
-            ("eval_every_minutes", finite_nonneg(self.eval_every_minutes)),
-            ("learn_every", self.learn_every >= 1),
-            ("home_tolerance", finite_pos(self.home_tolerance)),
+            (
+                "babble.gain_scale",
+                v(&b.gain_scale),
+                pos,
+                finite_pos(b.gain_scale),
+            ),
+            ("babble.noise", v(&b.noise), nonneg, finite_nonneg(b.noise)),
+            (
+                "babble.settle",
+                v(&b.settle),
+                nonneg,
+                finite_nonneg(b.settle),
+            ),
+            (
+                "babble.correlation_time",
+                v(&b.correlation_time),
+                nonneg,
+                finite_nonneg(b.correlation_time),
+            ),
+            (
+                "episode_seconds",
+                v(&self.episode_seconds),
+                pos,
+                finite_pos(self.episode_seconds),
+            ),
+            (
+                "reset_error",
+                v(&self.reset_error),
+                "> 0",
+                self.reset_error > 0.0,
+            ),
+            (
+                "eval_every_minutes",
+                v(&self.eval_every_minutes),
+                nonneg,
+                finite_nonneg(self.eval_every_minutes),
+            ),
+            (
+                "learn_every",
+                v(&self.learn_every),
+                "≥ 1",
+                self.learn_every >= 1,
+            ),
+            (
+                "home_tolerance",
+                v(&self.home_tolerance),
+                pos,
+                finite_pos(self.home_tolerance),
+            ),
             (
                 "home_integral_seconds",
+                v(&self.home_integral_seconds),
+                nonneg,
                 finite_nonneg(self.home_integral_seconds),
             ),
-            ("home_hold_seconds", finite_pos(self.home_hold_seconds)),
-            ("switch_seconds", finite_nonneg(self.switch_seconds)),
+            (
+                "home_hold_seconds",
+                v(&self.home_hold_seconds),
+                pos,
+                finite_pos(self.home_hold_seconds),
+            ),
+            (
+                "switch_seconds",
+                v(&self.switch_seconds),
+                nonneg,
+                finite_nonneg(self.switch_seconds),
+            ),
             (
                 "first_switch_seconds",
+                v(&self.first_switch_seconds),
+                nonneg,
                 finite_nonneg(self.first_switch_seconds),
             ),
             (
                 "brake_switch_seconds",
+                v(&self.brake_switch_seconds),
+                nonneg,
                 finite_nonneg(self.brake_switch_seconds),
             ),
             (
                 "command_step_limit",
+                v(&self.command_step_limit),
+                "unset or > 0, finite",
                 self.command_step_limit.is_none_or(finite_pos),
             ),
             (
                 "quiet_hold_gain",
+                v(&self.quiet_hold_gain),
+                "in [0, 1]",
                 (0.0..=1.0).contains(&self.quiet_hold_gain),
             ),
         ];
-        match checks.iter().find(|(_, ok)| !ok) {
-            Some((what, _)) => Err(LearnError::InvalidConfig(format!(
-                "training setting {what} is out of range: {self:?}"
+        match checks.iter().find(|c| !c.3) {
+            Some((what, value, accepted, _)) => Err(LearnError::InvalidConfig(format!(
+                "training setting {what} = {value}: accepted {accepted}"
             ))),
             None => {
                 self.curriculum.validate()?;

@@ -91,25 +91,41 @@ impl PostureHolds {
     /// [`LearnError::InvalidConfig`] naming the field out of range.
     pub fn validate(&self) -> Result<()> {
         let pos = |x: f64| x > 0.0 && x.is_finite();
+        let nonneg = |x: f64| x >= 0.0 && x.is_finite();
+        // (field, its value, what is accepted, whether it is)
         let bad = [
-            ("move_seconds", pos(self.move_seconds)),
+            (
+                "move_seconds",
+                self.move_seconds,
+                "> 0 s",
+                pos(self.move_seconds),
+            ),
             (
                 "hold_seconds",
-                self.hold_seconds >= 0.0 && self.hold_seconds.is_finite(),
+                self.hold_seconds,
+                "≥ 0 s",
+                nonneg(self.hold_seconds),
             ),
-            ("record_every", pos(self.record_every)),
-            ("jitter", self.jitter >= 0.0 && self.jitter.is_finite()),
-            ("pool", self.pool >= 1),
+            (
+                "record_every",
+                self.record_every,
+                "> 0 s",
+                pos(self.record_every),
+            ),
+            ("jitter", self.jitter, "≥ 0 rad", nonneg(self.jitter)),
+            ("pool", self.pool as f64, "≥ 1", self.pool >= 1),
             (
                 "handover_seconds",
-                self.handover_seconds >= 0.0 && self.handover_seconds.is_finite(),
+                self.handover_seconds,
+                "≥ 0 s",
+                nonneg(self.handover_seconds),
             ),
         ]
         .into_iter()
-        .find(|(_, ok)| !ok);
+        .find(|c| !c.3);
         match bad {
-            Some((what, _)) => Err(LearnError::InvalidConfig(format!(
-                "posture_holds.{what} is out of range: {self:?}"
+            Some((what, value, accepted, _)) => Err(LearnError::InvalidConfig(format!(
+                "posture_holds.{what} = {value}: accepted {accepted} (finite)"
             ))),
             None => Ok(()),
         }
@@ -152,5 +168,37 @@ mod tests {
         for b in bad {
             assert!(b.validate().is_err(), "{b:?}");
         }
+        // The message names the field, its value and what is accepted.
+        let e = PostureHolds {
+            hold_seconds: -1.0,
+            ..Default::default()
+        }
+        .validate()
+        .unwrap_err()
+        .to_string();
+        assert!(
+            e.contains("posture_holds.hold_seconds = -1: accepted ≥ 0 s"),
+            "{e}"
+        );
+    }
+
+    /// A training setting out of range is refused with its name, value and accepted range.
+    #[test]
+    fn a_training_setting_out_of_range_is_named_with_its_value() {
+        let cfg = crate::train::TrainConfig {
+            quiet_hold_gain: 1.5,
+            ..Default::default()
+        };
+        let e = cfg.validate().unwrap_err().to_string();
+        assert!(
+            e.contains("quiet_hold_gain = 1.5: accepted in [0, 1]"),
+            "{e}"
+        );
+        let cfg = crate::train::TrainConfig {
+            command_step_limit: Some(-0.1),
+            ..Default::default()
+        };
+        let e = cfg.validate().unwrap_err().to_string();
+        assert!(e.contains("command_step_limit = Some(-0.1)"), "{e}");
     }
 }
