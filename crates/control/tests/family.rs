@@ -111,12 +111,12 @@ fn every_drawn_path_is_in_the_region_reachable_and_within_the_limits() {
 }
 
 #[test]
-fn a_family_config_out_of_range_is_refused_with_its_field() {
+fn a_family_config_out_of_range_is_refused_with_its_field_and_value() {
     let model = robots::planar3();
     let mut cfg = family();
     cfg.family.size = [0.5, 1.5];
     let e = cfg.build(&model).unwrap_err().to_string();
-    assert!(e.contains("size"), "{e}");
+    assert!(e.contains("size = [0.5, 1.5]: accepted"), "{e}");
     cfg.family.size = [0.3, 0.8];
     cfg.family.kinds = vec![TrajectoryKind::Family];
     assert!(cfg.build(&model).unwrap_err().to_string().contains("kinds"));

@@ -105,37 +105,75 @@ impl FamilyConfig {
     pub fn validate(&self) -> Result<()> {
         let pos = |x: f64| x > 0.0 && x.is_finite();
         let range = |r: [f64; 2]| pos(r[0]) && r[0] <= r[1] && r[1].is_finite();
+        let v = |x: &dyn std::fmt::Debug| format!("{x:?}");
+        let lo_hi = "[lo, hi] with 0 < lo ≤ hi, finite";
+        // (field, its value, what is accepted, whether it is)
         let checks = [
-            ("growth", self.growth >= 0.0 && self.growth.is_finite()),
+            (
+                "growth",
+                v(&self.growth),
+                "≥ 0, finite",
+                self.growth >= 0.0 && self.growth.is_finite(),
+            ),
             (
                 "half_size",
+                v(&self.half_size),
+                "unset or two sizes > 0 m, finite",
                 self.half_size.is_none_or(|h| pos(h[0]) && pos(h[1])),
             ),
             (
                 "kinds",
+                v(&self.kinds),
+                "one or more path kinds, not family",
                 !self.kinds.is_empty() && !self.kinds.contains(&TrajectoryKind::Family),
             ),
-            ("size", range(self.size) && self.size[1] <= 1.0),
-            ("period", range(self.period)),
-            ("move_time", range(self.move_time)),
+            (
+                "size",
+                v(&self.size),
+                "[lo, hi] with 0 < lo ≤ hi ≤ 1",
+                range(self.size) && self.size[1] <= 1.0,
+            ),
+            ("period", v(&self.period), lo_hi, range(self.period)),
+            (
+                "move_time",
+                v(&self.move_time),
+                lo_hi,
+                range(self.move_time),
+            ),
             (
                 "points",
+                v(&self.points),
+                "[lo, hi] with 2 ≤ lo ≤ hi ≤ 16",
                 self.points[0] >= 2 && self.points[0] <= self.points[1] && self.points[1] <= 16,
             ),
-            ("max_acceleration_ratio", pos(self.max_acceleration_ratio)),
-            ("approach_speed", pos(self.approach_speed)),
+            (
+                "max_acceleration_ratio",
+                v(&self.max_acceleration_ratio),
+                "> 0, finite",
+                pos(self.max_acceleration_ratio),
+            ),
+            (
+                "approach_speed",
+                v(&self.approach_speed),
+                "> 0, finite",
+                pos(self.approach_speed),
+            ),
             (
                 "torque_share",
+                v(&self.torque_share),
+                "in (0, 1]",
                 pos(self.torque_share) && self.torque_share <= 1.0,
             ),
             (
                 "max_draws",
+                v(&self.max_draws),
+                "in [1, 100000]",
                 self.max_draws >= 1 && self.max_draws <= 100_000,
             ),
         ];
-        match checks.iter().find(|(_, ok)| !ok) {
-            Some((what, _)) => Err(ControlError::InvalidConfig(format!(
-                "[trajectory.family] {what} is out of range: {self:?}"
+        match checks.iter().find(|c| !c.3) {
+            Some((what, value, accepted, _)) => Err(ControlError::InvalidConfig(format!(
+                "[trajectory.family] {what} = {value}: accepted {accepted}"
             ))),
             None => Ok(()),
         }
