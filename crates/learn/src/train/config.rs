@@ -326,3 +326,26 @@ impl TrainConfig {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    /// A training setting out of range is refused with its name, value and accepted range.
+    #[test]
+    fn a_training_setting_out_of_range_is_named_with_its_value() {
+        let cfg = super::TrainConfig {
+            quiet_hold_gain: 1.5,
+            ..Default::default()
+        };
+        let e = cfg.validate().unwrap_err().to_string();
+        assert!(
+            e.contains("quiet_hold_gain = 1.5: accepted in [0, 1]"),
+            "{e}"
+        );
+        let cfg = super::TrainConfig {
+            command_step_limit: Some(-0.1),
+            ..Default::default()
+        };
+        let e = cfg.validate().unwrap_err().to_string();
+        assert!(e.contains("command_step_limit = Some(-0.1)"), "{e}");
+    }
+}
