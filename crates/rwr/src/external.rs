@@ -32,11 +32,7 @@ impl External {
 
     /// `(Σa)² / Σa²`; 0 when empty.
     pub fn ess(&self) -> f64 {
-        if self.sum2 > 0.0 {
-            self.sum * self.sum / self.sum2
-        } else {
-            0.0
-        }
+        crate::weights::ess_of(self.sum, self.sum2)
     }
 
     /// The reference of the share floor: [`Self::ess`] once the statistics have forgotten,

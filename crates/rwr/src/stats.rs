@@ -139,11 +139,7 @@ impl Stats {
 
     /// Effective sample size `(Σw)² / Σw²` (0 with no weight).
     pub fn ess(&self) -> f64 {
-        if self.sw2 > 0.0 {
-            self.sw * self.sw / self.sw2
-        } else {
-            0.0
-        }
+        crate::weights::ess_of(self.sw, self.sw2)
     }
 
     /// Weighted mean cost `Σ w r / Σ w`, the inverse of eq. 28.

@@ -31,6 +31,15 @@ pub fn check_ext(a: f64) -> Result<()> {
     }
 }
 
+/// Effective sample size `(Σw)² / Σw²` from the sums `Σw` and `Σw²` (0 with no weight).
+pub fn ess_of(sum: f64, sum2: f64) -> f64 {
+    if sum2 > 0.0 {
+        sum * sum / sum2
+    } else {
+        0.0
+    }
+}
+
 /// Effective sample size `(Σa)²/Σa²` of the external weights of `n` samples (`n` without
 /// them; 0 when they are all zero): the reference of [`crate::RwrConfig::min_ess_share`].
 pub fn external_ess(ext: Option<&[f64]>, n: usize) -> f64 {
@@ -38,11 +47,7 @@ pub fn external_ess(ext: Option<&[f64]>, n: usize) -> f64 {
         None => n as f64,
         Some(e) => {
             let (s, s2) = e.iter().fold((0.0, 0.0), |(s, s2), a| (s + a, s2 + a * a));
-            if s2 > 0.0 {
-                s * s / s2
-            } else {
-                0.0
-            }
+            ess_of(s, s2)
         }
     }
 }
