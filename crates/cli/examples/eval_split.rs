@@ -1,32 +1,55 @@
-//! The error split of saved models on their own (base) figure-8 (`docs/family.md`): tracking,
-//! command nMSE, its null-space part, the nominal behaviour's error, the error of `Â` and the
-//! floor of the learner's own `Â` and `û0`.
+//! The error split of saved models on their own (base) figure-8 and, with `--held-out N`, on
+//! E9's held-out paths (`N` of each kind; `docs/family.md`): tracking, command nMSE, its
+//! null-space part, the nominal behaviour's error, the error of `Â` and the floor of the
+//! learner's own `Â` and `û0`.
 //!
 //! ```sh
-//! cargo run --release -p osrl-cli --example eval_split -- A.osrl B.osrl …
+//! cargo run --release -p osrl-cli --example eval_split -- [--held-out N] A.osrl B.osrl …
 //! ```
 
-use anyhow::Result;
+use anyhow::{Context, Result};
+use osrl_experiments::family::{held_out, label};
 use osrl_experiments::Setup;
+use osrl_learn::eval::EvalResult;
 use osrl_learn::SavedModel;
 
 fn main() -> Result<()> {
-    for file in std::env::args().skip(1) {
-        let saved = SavedModel::load(std::path::Path::new(&file))?;
+    let mut args: Vec<String> = std::env::args().skip(1).collect();
+    let mut per_kind = 0;
+    if args.first().is_some_and(|a| a == "--held-out") {
+        per_kind = (args.get(1))
+            .and_then(|n| n.parse().ok())
+            .filter(|n| (1..=20).contains(n))
+            .context("--held-out N: a whole number from 1 to 20")?;
+        args.drain(..2);
+    }
+    for file in &args {
+        let saved = SavedModel::load(std::path::Path::new(file))?;
         let setup = Setup::from_saved(&saved)?;
         let (_, mut learner, model) = saved.into_parts();
         let e = setup.evaluator(&model)?.evaluate(&mut learner)?;
-        println!(
-            "{file}: {:.3} mm, nMSE {:.4} (null {:.4}, floor null {:.4}), nominal nMSE {:.4} \
-             (null {:.4}), gain error {:.4}",
-            e.tracking_rms_mm,
-            e.command_nmse,
-            e.command_nmse_null,
-            e.floor_nmse_null,
-            e.nominal_nmse,
-            e.nominal_nmse_null,
-            e.gain_error
-        );
+        println!("{file}");
+        print_split("default figure-8", &e);
+        if per_kind > 0 {
+            for p in held_out(&setup, per_kind)? {
+                let e = setup.evaluate_path(&model, &mut learner, &p)?;
+                print_split(&label(&p), &e);
+            }
+        }
     }
     Ok(())
+}
+
+fn print_split(path: &str, e: &EvalResult) {
+    println!(
+        "  {path}: {:.3} mm, nMSE {:.4} (null {:.4}, floor null {:.4}), nominal nMSE {:.4} \
+         (null {:.4}), gain error {:.4}",
+        e.tracking_rms_mm,
+        e.command_nmse,
+        e.command_nmse_null,
+        e.floor_nmse_null,
+        e.nominal_nmse,
+        e.nominal_nmse_null,
+        e.gain_error
+    );
 }

@@ -266,13 +266,15 @@ impl Setup {
         &self.learner
     }
 
-    /// The learner config a training run starts from: [`Setup::learner_config`], for a family
-    /// whose `static_gravity_on_policy` is off with the static gravity model's on-policy learning
-    /// off (`docs/family.md`).
+    /// The learner config a training run starts from: [`Setup::learner_config`]; for a family,
+    /// with the static gravity model's on-policy learning off unless the family's
+    /// `static_gravity_on_policy` is on, and the family's `command_projection` (`docs/family.md`).
     pub fn training_learner_config(&self) -> LearnerConfig {
         let mut cfg = self.learner.clone();
         if self.trajectory.kind == osrl_control::TrajectoryKind::Family {
-            cfg.gravity.static_on_policy &= self.trajectory.family.static_gravity_on_policy;
+            let family = &self.trajectory.family;
+            cfg.gravity.static_on_policy &= family.static_gravity_on_policy;
+            cfg.controllers.command_projection = family.command_projection;
         }
         cfg
     }
@@ -519,5 +521,24 @@ mod tests {
         assert!(family.learner_config().gravity.static_on_policy);
         fam.family.static_gravity_on_policy = true;
         assert!(on(&s.clone().with_trajectory(fam).unwrap()));
+    }
+
+    #[test]
+    fn family_training_takes_the_familys_command_projection() {
+        let s = Setup::new("planar3").unwrap();
+        let kappa = |s: &Setup| s.training_learner_config().controllers.command_projection;
+        // One path: the learner's own share (0.5 by default).
+        assert_eq!(kappa(&s), s.learner_config().controllers.command_projection);
+        assert_eq!(kappa(&s), 0.5);
+        let mut fam = s.family_config();
+        assert_eq!(kappa(&s.clone().with_trajectory(fam.clone()).unwrap()), 1.0);
+        fam.family.command_projection = 0.25;
+        assert_eq!(
+            kappa(&s.clone().with_trajectory(fam.clone()).unwrap()),
+            0.25
+        );
+        fam.family.command_projection = 1.5;
+        let err = s.clone().with_trajectory(fam).unwrap_err().to_string();
+        assert!(err.contains("command_projection = 1.5"), "{err}");
     }
 }

@@ -66,6 +66,12 @@ pub struct FamilyConfig {
     /// still postures per receptive field scattered over the region, whose fitted slopes shift
     /// `u0` along every other path through those fields.
     pub static_gravity_on_policy: bool,
+    /// The learner's command projection during family training: it replaces `[learner.controllers]
+    /// command_projection` (the share of the blend's part in the null space of the learned `Â`
+    /// that the command removes). Default 1: the whole null-space part. A receptive field
+    /// crossed by many different paths sees many different null-space commands for the same
+    /// task acceleration; the reward weighting resolves them slowly, the projection at once.
+    pub command_projection: f64,
 }
 
 impl Default for FamilyConfig {
@@ -88,6 +94,7 @@ impl Default for FamilyConfig {
             max_draws: 500,
             base_every: 6,
             static_gravity_on_policy: false,
+            command_projection: 1.0,
         }
     }
 }
@@ -169,6 +176,12 @@ impl FamilyConfig {
                 v(&self.max_draws),
                 "in [1, 100000]",
                 self.max_draws >= 1 && self.max_draws <= 100_000,
+            ),
+            (
+                "command_projection",
+                v(&self.command_projection),
+                "in [0, 1]",
+                (0.0..=1.0).contains(&self.command_projection),
             ),
         ];
         match checks.iter().find(|c| !c.3) {

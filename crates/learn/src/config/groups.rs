@@ -189,6 +189,7 @@ pub struct ControllerConfig {
     /// with the command's own weights, so the projector moves continuously as fields join.
     /// 0: the plain blend (eq. 34). Default 0.5: half the projection, the share at which the
     /// built-in arms' command error falls; the full projection brakes more episodes (D31, D32).
+    /// Training on a family of paths uses `[trajectory.family] command_projection` instead.
     pub command_projection: f64,
     /// Bound on each local controller's learned velocity gain on its own joint
     /// (`docs/decisions.md`, D21): the net damping `K_D,j − β_{q̇_j, j}` stays within
