@@ -368,8 +368,9 @@ mod tests {
             .fold(0.0, f64::max)
     }
 
-    /// The largest command change along a straight line in `q` from 0.5 rad away to the
-    /// trained field's centre, in `steps` equal increments (no exploration, no rate limit).
+    /// The largest command change along a straight line in `q` from 2 rad away (beyond the
+    /// neighbours' fade, 13.6 kernel widths of 0.125 rad) to the trained field's centre, in
+    /// `steps` equal increments (no exploration, no rate limit).
     fn largest_change_into_the_field(steps: usize) -> (f64, Vec<CommandSource>) {
         let mut cfg = fixture::config();
         cfg.guards.torque_rate_limit = Some(f64::INFINITY);
@@ -378,7 +379,7 @@ mod tests {
         let (xdd, mut prev, mut u) = ([0.3, -0.2], None::<[f64; 3]>, [0.0; 3]);
         let (mut largest, mut sources) = (0.0f64, Vec::new());
         for k in 0..=steps {
-            let s = 0.5 * (1.0 - k as f64 / steps as f64);
+            let s = 2.0 * (1.0 - k as f64 / steps as f64);
             let q: Vec<f64> = q0.iter().map(|v| v + s).collect();
             let src = learner
                 .command::<rand_chacha::ChaCha8Rng>(&q, &vd, &xdd, None, &mut u)
