@@ -268,13 +268,15 @@ impl Setup {
 
     /// The learner config a training run starts from: [`Setup::learner_config`]; for a family,
     /// with the static gravity model's on-policy learning off unless the family's
-    /// `static_gravity_on_policy` is on, and the family's `command_projection` (`docs/family.md`).
+    /// `static_gravity_on_policy` is on, and the family's `command_projection` and
+    /// `neighbour_cutoff` (`docs/family.md`).
     pub fn training_learner_config(&self) -> LearnerConfig {
         let mut cfg = self.learner.clone();
         if self.trajectory.kind == osrl_control::TrajectoryKind::Family {
             let family = &self.trajectory.family;
             cfg.gravity.static_on_policy &= family.static_gravity_on_policy;
             cfg.controllers.command_projection = family.command_projection;
+            cfg.controllers.neighbour_cutoff = family.neighbour_cutoff;
         }
         cfg
     }
@@ -540,5 +542,19 @@ mod tests {
         fam.family.command_projection = 1.5;
         let err = s.clone().with_trajectory(fam).unwrap_err().to_string();
         assert!(err.contains("command_projection = 1.5"), "{err}");
+    }
+
+    #[test]
+    fn family_training_takes_the_familys_neighbour_cutoff() {
+        let s = Setup::new("planar3").unwrap();
+        let far = |s: &Setup| s.training_learner_config().controllers.neighbour_cutoff;
+        assert_eq!(far(&s), 1e-8);
+        let mut fam = s.family_config();
+        assert_eq!(far(&s.clone().with_trajectory(fam.clone()).unwrap()), 1e-40);
+        fam.family.neighbour_cutoff = 0.0;
+        assert_eq!(far(&s.clone().with_trajectory(fam.clone()).unwrap()), 0.0);
+        fam.family.neighbour_cutoff = 0.01;
+        let err = s.clone().with_trajectory(fam).unwrap_err().to_string();
+        assert!(err.contains("neighbour_cutoff = 0.01"), "{err}");
     }
 }

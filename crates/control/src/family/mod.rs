@@ -72,6 +72,12 @@ pub struct FamilyConfig {
     /// crossed by many different paths sees many different null-space commands for the same
     /// task acceleration; the reward weighting resolves them slowly, the projection at once.
     pub command_projection: f64,
+    /// The learner's `neighbour_cutoff` during family training (it replaces `[learner.controllers]
+    /// neighbour_cutoff`, 1e-8): the activation at which the nearest trained controllers have
+    /// faded into `u0` where the blend's support is thin; 0 or in (0, 1e-3]. Default 1e-40
+    /// (about 13.6 kernel widths): a drawn path's stops leave the fields within milliseconds,
+    /// faster than a shorter fade hands the arm to `u0`'s pull to rest smoothly.
+    pub neighbour_cutoff: f64,
 }
 
 impl Default for FamilyConfig {
@@ -95,6 +101,7 @@ impl Default for FamilyConfig {
             base_every: 6,
             static_gravity_on_policy: false,
             command_projection: 1.0,
+            neighbour_cutoff: 1e-40,
         }
     }
 }
@@ -182,6 +189,13 @@ impl FamilyConfig {
                 v(&self.command_projection),
                 "in [0, 1]",
                 (0.0..=1.0).contains(&self.command_projection),
+            ),
+            (
+                "neighbour_cutoff",
+                v(&self.neighbour_cutoff),
+                "0 (off) or in (0, 1e-3]",
+                self.neighbour_cutoff == 0.0
+                    || (self.neighbour_cutoff > 0.0 && self.neighbour_cutoff <= 1e-3),
             ),
         ];
         match checks.iter().find(|c| !c.3) {

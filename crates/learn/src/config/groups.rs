@@ -171,10 +171,10 @@ pub struct ControllerConfig {
     /// still command (`learner/nearest.rs`; `docs/learner.md`, "Thin support"): where `κ < 1`
     /// the share `1 − κ` goes to their blend, each evaluated at the state pulled into its
     /// field's support, faded into `u0` as the nearest trained field's activation falls from
-    /// `partition.activation_cutoff` to this value. Default 1e-40 (about 13.6 kernel widths):
-    /// `u0`'s pull to rest would take the arm out of the trained region for good, and a state
-    /// that leaves the fields fast (a stop at the end of a move) crosses a shorter fade within
-    /// milliseconds. 0: off (the learned part fades into `u0` alone).
+    /// `partition.activation_cutoff` to this value. Default 1e-8 (about 6 kernel widths):
+    /// `u0`'s pull to rest would take the arm out of the trained region for good. 0: off (the
+    /// learned part fades into `u0` alone). Training on a family of paths uses
+    /// `[trajectory.family] neighbour_cutoff` instead.
     pub neighbour_cutoff: f64,
     /// Hindsight shrinkage `κ ∈ [0, 1]`: a sample's target `u − u0` loses the share `κ` of its
     /// part in the null space of `Â` — the same `ẍ` at a lower cost. 0 is the paper's plain
@@ -422,7 +422,7 @@ impl Default for ControllerConfig {
             trained_ess: 50.0,
             update_every: 25,
             prior_weight: 0.05,
-            neighbour_cutoff: 1e-40,
+            neighbour_cutoff: 1e-8,
             reward_weighting: true,
             cost: CostKind::NullSpace,
             null_space_shrink: 1.0,

@@ -369,11 +369,12 @@ mod tests {
     }
 
     /// The largest command change along a straight line in `q` from 2 rad away (beyond the
-    /// neighbours' fade, 13.6 kernel widths of 0.125 rad) to the trained field's centre, in
-    /// `steps` equal increments (no exploration, no rate limit).
+    /// neighbours' fade also at a family's cutoff, 13.6 kernel widths of 0.125 rad) to the
+    /// trained field's centre, in `steps` equal increments (no exploration, no rate limit).
     fn largest_change_into_the_field(steps: usize) -> (f64, Vec<CommandSource>) {
         let mut cfg = fixture::config();
         cfg.guards.torque_rate_limit = Some(f64::INFINITY);
+        cfg.controllers.neighbour_cutoff = 1e-40;
         let (mut learner, c) = one_trained_field(cfg);
         let (q0, vd) = (&c[..3], c[3..].to_vec());
         let (xdd, mut prev, mut u) = ([0.3, -0.2], None::<[f64; 3]>, [0.0; 3]);
