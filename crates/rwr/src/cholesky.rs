@@ -2,10 +2,10 @@
 //! lower triangle.
 //!
 //! The factorisation runs right-looking (every finished column updates all trailing columns)
-//! or, where the CPU has AVX-512, in panels of [`PANEL`] columns: all updates from the finished
-//! columns to a panel are applied a block of 8 rows at a time, each block held in a register
-//! through all finished columns (`cholesky_x86.rs`), then the panel is finished column by
-//! column. Each entry receives the same subtractions in the same order (finished column 0
+//! or, where the CPU has AVX2 or AVX-512, in panels of [`PANEL`] columns: all updates from the
+//! finished columns to a panel are applied a block of 4 (AVX2) or 8 rows (AVX-512) at a time,
+//! each block held in a register through all finished columns (`cholesky_x86.rs`), then the
+//! panel is finished column by column. Each entry receives the same subtractions in the same order (finished column 0
 //! first) and the same division: the same bits (tested).
 
 use crate::error::{Result, RwrError};
@@ -28,6 +28,9 @@ pub(crate) fn solve_lower(a: &mut DMatrix<f64>, b: &mut DMatrix<f64>) -> Result<
     if crate::simd::avx512() && a.nrows() >= PANEL_MIN {
         // SAFETY: the CPU supports AVX-512F (checked just above).
         unsafe { factor_panels(a, crate::cholesky_x86::panel_avx512)? };
+    } else if crate::simd::avx2() && a.nrows() >= PANEL_MIN {
+        // SAFETY: the CPU supports AVX2 (checked just above).
+        unsafe { factor_panels(a, crate::cholesky_x86::panel_avx2)? };
     } else {
         factor_right(a)?;
     }
@@ -155,33 +158,41 @@ mod tests {
         x.transpose() * &x / n as f64 + DMatrix::identity(p, p) * ridge
     }
 
-    /// The blocked factorisation (where the CPU has AVX-512) gives the right-looking one's bits
-    /// (the whole matrix, upper triangle included) and the same failures: every size from 1 to
-    /// 80 (the learner's 19 and 71 among them), well and badly conditioned, and singular.
+    /// The blocked factorisation (with each kernel this CPU has: AVX2, AVX-512) gives the
+    /// right-looking one's bits (the whole matrix, upper triangle included) and the same
+    /// failures: every size from 1 to 80 (the learner's 19 and 71 among them), well and badly
+    /// conditioned, and singular.
     #[test]
     fn the_panels_give_the_bits_of_the_right_looking_factorisation() {
         #[cfg(target_arch = "x86_64")]
-        if crate::simd::avx512() {
-            let mut rng = ChaCha8Rng::seed_from_u64(5);
-            let mut failed = 0;
-            for p in 1..=80 {
-                for (n, ridge) in [(3 * p, 1e-4), (p + 1, 1e-12), (p / 2, 0.0)] {
-                    let a = gram(&mut rng, p, n.max(1), ridge);
-                    let (mut right, mut panels) = (a.clone(), a.clone());
-                    let r = factor_right(&mut right);
-                    // SAFETY: the CPU supports AVX-512F (checked above).
-                    let q =
-                        unsafe { factor_panels(&mut panels, crate::cholesky_x86::panel_avx512) };
-                    assert_eq!(r.is_ok(), q.is_ok(), "p = {p}, n = {n}");
-                    failed += r.is_err() as usize;
-                    if r.is_ok() {
-                        let bits =
-                            |m: &DMatrix<f64>| m.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-                        assert!(bits(&right) == bits(&panels), "p = {p}, n = {n}");
+        {
+            use crate::cholesky_x86::{panel_avx2, panel_avx512};
+            let kernels: [(&str, bool, PanelKernel); 2] = [
+                ("AVX2", crate::simd::avx2(), panel_avx2),
+                ("AVX-512", crate::simd::avx512(), panel_avx512),
+            ];
+            for (name, _, kernel) in kernels.into_iter().filter(|k| k.1) {
+                let mut rng = ChaCha8Rng::seed_from_u64(5);
+                let mut failed = 0;
+                for p in 1..=80 {
+                    for (n, ridge) in [(3 * p, 1e-4), (p + 1, 1e-12), (p / 2, 0.0)] {
+                        let a = gram(&mut rng, p, n.max(1), ridge);
+                        let (mut right, mut panels) = (a.clone(), a.clone());
+                        let r = factor_right(&mut right);
+                        // SAFETY: the CPU supports the kernel's instructions (filtered above).
+                        let q = unsafe { factor_panels(&mut panels, kernel) };
+                        assert_eq!(r.is_ok(), q.is_ok(), "{name}, p = {p}, n = {n}");
+                        failed += r.is_err() as usize;
+                        if r.is_ok() {
+                            let bits = |m: &DMatrix<f64>| {
+                                m.iter().map(|x| x.to_bits()).collect::<Vec<_>>()
+                            };
+                            assert!(bits(&right) == bits(&panels), "{name}, p = {p}, n = {n}");
+                        }
                     }
                 }
+                assert!(failed > 50, "{name}: singular cases: {failed}");
             }
-            assert!(failed > 50, "singular cases: {failed}");
         }
     }
 }

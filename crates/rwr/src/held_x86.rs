@@ -1,6 +1,6 @@
 //! The x86-64 kernels of [`crate::stats::Stats::flush`]: [`GROUP`] blocks of [`LANES`] rows
-//! held in vector registers through all held samples (AVX-512: one register per block; AVX2:
-//! two, and a few accumulators spill). Each lane gets the portable kernel's operations in its
+//! held in vector registers through all held samples (AVX-512: one register per block, the whole
+//! group at once; AVX2: two, half the group at a time). Each lane gets the portable kernel's operations in its
 //! order — separate IEEE multiplies and adds, never fused — so the same bits (tested in
 //! `held.rs`).
 
@@ -8,8 +8,21 @@ use crate::held::{Group, Held, Kernel, GROUP, LANES, PAD};
 use crate::simd::unroll;
 use std::arch::x86_64::*;
 
-/// The accumulators of one group: block `g` in registers `2g` (rows 0–3) and `2g + 1` (4–7).
-type Acc = [__m256d; 2 * GROUP];
+/// Blocks per pass of the AVX2 kernels: half a group, so that the accumulators (two registers
+/// per block) and the operands fit the 16 AVX2 registers. With the whole group at once, 16
+/// accumulators spilled on every held sample (`gram_avx2` was 18 % of a sarcos7 training run
+/// on an AMD EPYC without AVX-512). The passes read the held samples twice, from the L1 cache.
+const PASS: usize = GROUP / 2;
+
+/// The accumulators of one pass: block `b + g` in registers `2g` (rows 0–3) and `2g + 1` (4–7).
+type Acc = [__m256d; 2 * PASS];
+
+/// [`crate::simd::unroll`] over the [`PASS`] blocks of a pass.
+macro_rules! unroll_pass {
+    ($g:ident => $body:block) => {{
+        unroll!(@ $g $body 0 1 2 3)
+    }};
+}
 
 /// Masks selecting the first `n` of four lanes (`MASK[n]`).
 const MASK: [[i64; 4]; 5] = [
@@ -27,34 +40,35 @@ unsafe fn mask(len: usize, k: usize) -> __m256i {
     _mm256_loadu_si256(MASK[n].as_ptr().cast())
 }
 
-/// The group's entries (zeros past a block's rows). `t` is checked against `m` by the caller.
+/// The entries of the pass's blocks `b..b + PASS` (zeros past a block's rows). `t` is checked
+/// against `m` by the caller.
 #[inline(always)]
-unsafe fn load(t: &Group, m: &[f64]) -> Acc {
-    let mut acc = [_mm256_setzero_pd(); 2 * GROUP];
-    unroll!(g => {
-        let ptr = m.as_ptr().add(t.off[g]);
-        if t.len[g] == LANES {
+unsafe fn load(t: &Group, m: &[f64], b: usize) -> Acc {
+    let mut acc = [_mm256_setzero_pd(); 2 * PASS];
+    unroll_pass!(g => {
+        let ptr = m.as_ptr().add(t.off[b + g]);
+        if t.len[b + g] == LANES {
             acc[2 * g] = _mm256_loadu_pd(ptr);
             acc[2 * g + 1] = _mm256_loadu_pd(ptr.add(4));
         } else {
-            acc[2 * g] = _mm256_maskload_pd(ptr, mask(t.len[g], 0));
-            acc[2 * g + 1] = _mm256_maskload_pd(ptr.add(4), mask(t.len[g], 1));
+            acc[2 * g] = _mm256_maskload_pd(ptr, mask(t.len[b + g], 0));
+            acc[2 * g + 1] = _mm256_maskload_pd(ptr.add(4), mask(t.len[b + g], 1));
         }
     });
     acc
 }
 
-/// Stores the first `t.n` blocks' rows back into `m`.
+/// Stores the pass's blocks among the group's first `t.n` back into `m`.
 #[inline(always)]
-unsafe fn store(t: &Group, acc: &Acc, m: &mut [f64]) {
-    unroll!(g => {
-        let ptr = m.as_mut_ptr().add(t.off[g]);
-        if g < t.n && t.len[g] == LANES {
+unsafe fn store(t: &Group, acc: &Acc, m: &mut [f64], b: usize) {
+    unroll_pass!(g => {
+        let ptr = m.as_mut_ptr().add(t.off[b + g]);
+        if b + g < t.n && t.len[b + g] == LANES {
             _mm256_storeu_pd(ptr, acc[2 * g]);
             _mm256_storeu_pd(ptr.add(4), acc[2 * g + 1]);
-        } else if g < t.n {
-            _mm256_maskstore_pd(ptr, mask(t.len[g], 0), acc[2 * g]);
-            _mm256_maskstore_pd(ptr.add(4), mask(t.len[g], 1), acc[2 * g + 1]);
+        } else if b + g < t.n {
+            _mm256_maskstore_pd(ptr, mask(t.len[b + g], 0), acc[2 * g]);
+            _mm256_maskstore_pd(ptr.add(4), mask(t.len[b + g], 1), acc[2 * g + 1]);
         }
     });
 }
@@ -71,58 +85,63 @@ fn check(t: &Group, h: &Held, p: usize, cols: usize, d: usize, m: &[f64]) {
     assert!(h.phi.len() == n * (p + PAD) && h.wphi.len() == h.phi.len() && h.u.len() == n * d);
 }
 
-/// [`crate::held`]'s `gram_group` on AVX registers.
+/// [`crate::held`]'s `gram_group` on AVX registers, [`PASS`] blocks at a time.
 #[inline(always)]
 unsafe fn gram_body(t: &Group, h: &Held, p: usize, d: usize, m: &mut [f64]) {
     check(t, h, p, p, d, m);
-    let mut acc = load(t, m);
-    for s in 0..h.len() {
-        let phi = h.phi.as_ptr().add(s * (p + PAD));
-        let wphi = h.wphi.as_ptr().add(s * (p + PAD));
-        let f = *h.scale.get_unchecked(s);
-        if f != 1.0 {
-            let f = _mm256_set1_pd(f);
-            unroll!(g => {
-                acc[2 * g] = _mm256_mul_pd(acc[2 * g], f);
-                acc[2 * g + 1] = _mm256_mul_pd(acc[2 * g + 1], f);
+    for b in (0..t.n).step_by(PASS) {
+        let mut acc = load(t, m, b);
+        for s in 0..h.len() {
+            let phi = h.phi.as_ptr().add(s * (p + PAD));
+            let wphi = h.wphi.as_ptr().add(s * (p + PAD));
+            let f = *h.scale.get_unchecked(s);
+            if f != 1.0 {
+                let f = _mm256_set1_pd(f);
+                unroll_pass!(g => {
+                    acc[2 * g] = _mm256_mul_pd(acc[2 * g], f);
+                    acc[2 * g + 1] = _mm256_mul_pd(acc[2 * g + 1], f);
+                });
+            }
+            unroll_pass!(g => {
+                let wj = _mm256_set1_pd(*wphi.add(t.col[b + g]));
+                let x = phi.add(t.row[b + g]);
+                acc[2 * g] = _mm256_add_pd(acc[2 * g], _mm256_mul_pd(wj, _mm256_loadu_pd(x)));
+                let x = _mm256_loadu_pd(x.add(4));
+                acc[2 * g + 1] = _mm256_add_pd(acc[2 * g + 1], _mm256_mul_pd(wj, x));
             });
         }
-        unroll!(g => {
-            let wj = _mm256_set1_pd(*wphi.add(t.col[g]));
-            let x = phi.add(t.row[g]);
-            acc[2 * g] = _mm256_add_pd(acc[2 * g], _mm256_mul_pd(wj, _mm256_loadu_pd(x)));
-            let x = _mm256_loadu_pd(x.add(4));
-            acc[2 * g + 1] = _mm256_add_pd(acc[2 * g + 1], _mm256_mul_pd(wj, x));
-        });
+        store(t, &acc, m, b);
     }
-    store(t, &acc, m);
 }
 
-/// [`crate::held`]'s `cross_group` on AVX registers: `(w φ_i) u_k`, the product `w φ_i` first.
+/// [`crate::held`]'s `cross_group` on AVX registers: `(w φ_i) u_k`, the product `w φ_i` first;
+/// [`PASS`] blocks at a time.
 #[inline(always)]
 unsafe fn cross_body(t: &Group, h: &Held, p: usize, d: usize, m: &mut [f64]) {
     check(t, h, p, d, d, m);
-    let mut acc = load(t, m);
-    for s in 0..h.len() {
-        let wphi = h.wphi.as_ptr().add(s * (p + PAD));
-        let u = h.u.as_ptr().add(s * d);
-        let f = *h.scale.get_unchecked(s);
-        if f != 1.0 {
-            let f = _mm256_set1_pd(f);
-            unroll!(g => {
-                acc[2 * g] = _mm256_mul_pd(acc[2 * g], f);
-                acc[2 * g + 1] = _mm256_mul_pd(acc[2 * g + 1], f);
+    for b in (0..t.n).step_by(PASS) {
+        let mut acc = load(t, m, b);
+        for s in 0..h.len() {
+            let wphi = h.wphi.as_ptr().add(s * (p + PAD));
+            let u = h.u.as_ptr().add(s * d);
+            let f = *h.scale.get_unchecked(s);
+            if f != 1.0 {
+                let f = _mm256_set1_pd(f);
+                unroll_pass!(g => {
+                    acc[2 * g] = _mm256_mul_pd(acc[2 * g], f);
+                    acc[2 * g + 1] = _mm256_mul_pd(acc[2 * g + 1], f);
+                });
+            }
+            unroll_pass!(g => {
+                let uk = _mm256_set1_pd(*u.add(t.col[b + g]));
+                let wx = wphi.add(t.row[b + g]);
+                acc[2 * g] = _mm256_add_pd(acc[2 * g], _mm256_mul_pd(_mm256_loadu_pd(wx), uk));
+                let wx = _mm256_loadu_pd(wx.add(4));
+                acc[2 * g + 1] = _mm256_add_pd(acc[2 * g + 1], _mm256_mul_pd(wx, uk));
             });
         }
-        unroll!(g => {
-            let uk = _mm256_set1_pd(*u.add(t.col[g]));
-            let wx = wphi.add(t.row[g]);
-            acc[2 * g] = _mm256_add_pd(acc[2 * g], _mm256_mul_pd(_mm256_loadu_pd(wx), uk));
-            let wx = _mm256_loadu_pd(wx.add(4));
-            acc[2 * g + 1] = _mm256_add_pd(acc[2 * g + 1], _mm256_mul_pd(wx, uk));
-        });
+        store(t, &acc, m, b);
     }
-    store(t, &acc, m);
 }
 
 /// The accumulators of one group in AVX-512 registers (block `g` in register `g`).
