@@ -14,8 +14,17 @@ use crate::stats::Stats;
 pub(crate) const HELD_MAX: usize = 32;
 
 /// Features from which [`Stats::push`] holds samples; below, it adds them at once (the
-/// blocks' overhead outweighs the saving: planar3's 9 and 19 features ran 5 % slower held).
-pub(crate) const HELD_MIN_FEATURES: usize = 24;
+/// blocks' overhead outweighs the saving): 24 with the AVX-512 kernels (planar3's 9 and 19
+/// features ran 5 % slower held), 16 with the AVX2 ones (planar3's 19 held: its training 6 %
+/// faster on an AMD EPYC, `docs/decisions.md`, D51) and the portable ones.
+#[inline]
+pub(crate) fn held_min_features() -> usize {
+    #[cfg(target_arch = "x86_64")]
+    if crate::simd::avx512() {
+        return 24;
+    }
+    16
+}
 
 /// Rows per block (two AVX2 registers of f64).
 pub(crate) const LANES: usize = 8;
@@ -126,7 +135,7 @@ impl Stats {
     /// once, `gram` and `cross` at the next [`Stats::flush`] (run here once [`HELD_MAX`]
     /// samples are held). Lengths are the caller's responsibility. Does not allocate.
     pub fn push(&mut self, f: Option<f64>, w: f64, phi: &[f64], u: &[f64], r: f64) {
-        if self.gram.nrows() < HELD_MIN_FEATURES {
+        if self.gram.nrows() < held_min_features() {
             if let Some(f) = f {
                 self.scale(f);
             }
@@ -281,8 +290,8 @@ mod tests {
 
     /// Held samples folded in by `flush` (the dispatched kernels, the AVX2 kernels where the
     /// CPU has them, and the portable ones) give the bits of `scale` and `add_body` one sample
-    /// at a time: at the learner's sizes (71 and 19 features; below `HELD_MIN_FEATURES`
-    /// it adds at once) and others, in random runs of held samples ended by the holding limit,
+    /// at a time: at the learner's sizes (71 and 19 features; below `held_min_features()`
+    /// it adds at once, 16 or 24) and others, in random runs of held samples ended by the holding limit,
     /// an `add`, a `scale` or a `flush`, with random rescalings (some by 0 and 1), and through
     /// the serialised form.
     #[test]
@@ -291,6 +300,7 @@ mod tests {
         for (p, d) in [
             (71, 3),
             (19, 3),
+            (16, 2),
             (24, 2),
             (25, 7),
             (33, 1),
