@@ -4,7 +4,7 @@
 //! column order, a separate IEEE multiply and subtract (never fused): the right-looking
 //! factorisation's bits (tested in `cholesky.rs`).
 
-use crate::simd::unroll;
+use crate::simd::{mask4, unroll};
 use std::arch::x86_64::*;
 
 /// Blocks updated together (independent chains, one register each).
@@ -88,15 +88,6 @@ unsafe fn in_groups(
     }
 }
 
-/// Masks selecting the first `n` of four lanes (`MASK4[n]`).
-const MASK4: [[i64; 4]; 5] = [
-    [0, 0, 0, 0],
-    [-1, 0, 0, 0],
-    [-1, -1, 0, 0],
-    [-1, -1, -1, 0],
-    [-1, -1, -1, -1],
-];
-
 /// [`group`] on AVX2 registers (blocks of at most four rows). The panel's entries are loaded
 /// and stored masked; the finished columns are read whole (the lanes past a block's rows are
 /// computed and dropped).
@@ -106,7 +97,7 @@ unsafe fn group_avx2(m: &mut [f64], p: usize, c0: usize, b: &Blocks) {
     let base = m.as_mut_ptr();
     let mut acc = [_mm256_setzero_pd(); GROUP];
     unroll!(g => {
-        let k = _mm256_loadu_si256(MASK4[b.len[g]].as_ptr().cast());
+        let k = mask4(b.len[g]);
         acc[g] = _mm256_maskload_pd(base.add(b.col[g] * p + b.row[g]), k);
     });
     for j in 0..c0 {
@@ -119,7 +110,7 @@ unsafe fn group_avx2(m: &mut [f64], p: usize, c0: usize, b: &Blocks) {
     }
     unroll!(g => {
         if g < b.n {
-            let k = _mm256_loadu_si256(MASK4[b.len[g]].as_ptr().cast());
+            let k = mask4(b.len[g]);
             _mm256_maskstore_pd(base.add(b.col[g] * p + b.row[g]), k, acc[g]);
         }
     });

@@ -5,7 +5,7 @@
 //! `held.rs`).
 
 use crate::held::{Group, Held, Kernel, GROUP, LANES, PAD};
-use crate::simd::unroll;
+use crate::simd::{mask4, unroll};
 use std::arch::x86_64::*;
 
 /// Blocks per pass of the AVX2 kernels: half a group, so that the accumulators (two registers
@@ -24,20 +24,22 @@ macro_rules! unroll_pass {
     }};
 }
 
-/// Masks selecting the first `n` of four lanes (`MASK[n]`).
-const MASK: [[i64; 4]; 5] = [
-    [0, 0, 0, 0],
-    [-1, 0, 0, 0],
-    [-1, -1, 0, 0],
-    [-1, -1, -1, 0],
-    [-1, -1, -1, -1],
-];
-
 /// The mask of half `k` (rows `4k..4k + 4`) of a block with `len` rows.
 #[inline(always)]
 unsafe fn mask(len: usize, k: usize) -> __m256i {
-    let n = len.saturating_sub(4 * k).min(4);
-    _mm256_loadu_si256(MASK[n].as_ptr().cast())
+    mask4(len.saturating_sub(4 * k).min(4))
+}
+
+/// Multiplies every accumulator by `f` (a held sample's rescaling; nothing when 1).
+#[inline(always)]
+unsafe fn rescale(acc: &mut Acc, f: f64) {
+    if f != 1.0 {
+        let f = _mm256_set1_pd(f);
+        unroll_pass!(g => {
+            acc[2 * g] = _mm256_mul_pd(acc[2 * g], f);
+            acc[2 * g + 1] = _mm256_mul_pd(acc[2 * g + 1], f);
+        });
+    }
 }
 
 /// The entries of the pass's blocks `b..b + PASS` (zeros past a block's rows). `t` is checked
@@ -94,14 +96,7 @@ unsafe fn gram_body(t: &Group, h: &Held, p: usize, d: usize, m: &mut [f64]) {
         for s in 0..h.len() {
             let phi = h.phi.as_ptr().add(s * (p + PAD));
             let wphi = h.wphi.as_ptr().add(s * (p + PAD));
-            let f = *h.scale.get_unchecked(s);
-            if f != 1.0 {
-                let f = _mm256_set1_pd(f);
-                unroll_pass!(g => {
-                    acc[2 * g] = _mm256_mul_pd(acc[2 * g], f);
-                    acc[2 * g + 1] = _mm256_mul_pd(acc[2 * g + 1], f);
-                });
-            }
+            rescale(&mut acc, *h.scale.get_unchecked(s));
             unroll_pass!(g => {
                 let wj = _mm256_set1_pd(*wphi.add(t.col[b + g]));
                 let x = phi.add(t.row[b + g]);
@@ -124,14 +119,7 @@ unsafe fn cross_body(t: &Group, h: &Held, p: usize, d: usize, m: &mut [f64]) {
         for s in 0..h.len() {
             let wphi = h.wphi.as_ptr().add(s * (p + PAD));
             let u = h.u.as_ptr().add(s * d);
-            let f = *h.scale.get_unchecked(s);
-            if f != 1.0 {
-                let f = _mm256_set1_pd(f);
-                unroll_pass!(g => {
-                    acc[2 * g] = _mm256_mul_pd(acc[2 * g], f);
-                    acc[2 * g + 1] = _mm256_mul_pd(acc[2 * g + 1], f);
-                });
-            }
+            rescale(&mut acc, *h.scale.get_unchecked(s));
             unroll_pass!(g => {
                 let uk = _mm256_set1_pd(*u.add(t.col[b + g]));
                 let wx = wphi.add(t.row[b + g]);

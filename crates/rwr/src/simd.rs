@@ -20,6 +20,20 @@ pub(crate) fn avx512() -> bool {
     std::arch::is_x86_feature_detected!("avx512f")
 }
 
+/// The AVX2 mask selecting the first `n` (0..=4) of four lanes.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+pub(crate) unsafe fn mask4(n: usize) -> std::arch::x86_64::__m256i {
+    const MASK: [[i64; 4]; 5] = [
+        [0, 0, 0, 0],
+        [-1, 0, 0, 0],
+        [-1, -1, 0, 0],
+        [-1, -1, -1, 0],
+        [-1, -1, -1, -1],
+    ];
+    std::arch::x86_64::_mm256_loadu_si256(MASK[n].as_ptr().cast())
+}
+
 /// `body` for `$g` = 0, 1, …, 7: literal indices, so the accumulators stay in registers.
 macro_rules! unroll {
     ($g:ident => $body:block) => {{
