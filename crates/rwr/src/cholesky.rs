@@ -5,8 +5,8 @@
 //! or, where the CPU has AVX2 or AVX-512, in panels of [`PANEL`] columns: all updates from the
 //! finished columns to a panel are applied a block of 4 (AVX2) or 8 rows (AVX-512) at a time,
 //! each block held in a register through all finished columns (`cholesky_x86.rs`), then the
-//! panel is finished column by column. Each entry receives the same subtractions in the same order (finished column 0
-//! first) and the same division: the same bits (tested).
+//! panel is finished column by column. Each entry receives the same subtractions in the same
+//! order (finished column 0 first) and the same division: the same bits (tested).
 
 use crate::error::{Result, RwrError};
 use crate::stats::dot;

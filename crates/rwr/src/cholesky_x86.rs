@@ -1,8 +1,8 @@
 //! The x86-64 kernels of the blocked Cholesky factorisation (`cholesky.rs`): the updates from
 //! the finished columns to a panel, eight blocks of rows at a time, each block held in a
-//! register through all finished columns (AVX-512: blocks of eight rows; AVX2: of four). Each entry gets `a − x·l` per finished column in
-//! column order, a separate IEEE multiply and subtract (never fused): the right-looking
-//! factorisation's bits (tested in `cholesky.rs`).
+//! register through all finished columns (AVX-512: blocks of eight rows; AVX2: of four). Each
+//! entry gets `a − x·l` per finished column in column order, a separate IEEE multiply and
+//! subtract (never fused): the right-looking factorisation's bits (tested in `cholesky.rs`).
 
 use crate::simd::{mask4, unroll};
 use std::arch::x86_64::*;
@@ -41,8 +41,10 @@ pub(crate) unsafe fn panel_avx512(m: &mut [f64], p: usize, c0: usize, c1: usize)
 /// The CPU must support AVX2.
 #[target_feature(enable = "avx2")]
 pub(crate) unsafe fn panel_avx2(m: &mut [f64], p: usize, c0: usize, c1: usize) {
-    // The unmasked reads of the finished columns below reach at most 3 rows past a column's end,
-    // into the next column: inside `m` while a finished column is not the last (`c0 < p`).
+    // The unmasked reads of the finished columns reach at most 3 rows past a column's end, into
+    // the next column: inside `m` while a finished column is not the last (`c0 < p`) and the
+    // matrix has at least 3 rows (the last read is at `(p − 2) p + p + 2 < p²`).
+    assert!(p >= 3, "panel_avx2 needs at least 3 rows, got {p}");
     in_groups(m, p, c0, c1, 4, group_avx2);
 }
 
