@@ -37,13 +37,15 @@ pub(crate) const GROUP: usize = 8;
 pub(crate) const PAD: usize = LANES;
 
 /// Samples not yet in `gram` and `cross`: per sample the factor the statistics were scaled by
-/// just before it (1: none), `φ` and `w φ` (each followed by [`PAD`] zeros), and `u`.
+/// just before it (1: none), `φ` (followed by [`PAD`] zeros), its weight `w` and `u`. The
+/// kernels form `w φ` as they go (the same product, the same bits): holding it as well doubled
+/// the held samples' bytes, which then no longer fit the L1 cache beside the statistics.
 /// Preallocated.
 #[derive(Debug, PartialEq)]
 pub(crate) struct Held {
     pub scale: Vec<f64>,
     pub phi: Vec<f64>,
-    pub wphi: Vec<f64>,
+    pub w: Vec<f64>,
     pub u: Vec<f64>,
 }
 
@@ -52,7 +54,7 @@ impl Held {
         Self {
             scale: Vec::with_capacity(HELD_MAX),
             phi: Vec::with_capacity(HELD_MAX * (p + PAD)),
-            wphi: Vec::with_capacity(HELD_MAX * (p + PAD)),
+            w: Vec::with_capacity(HELD_MAX),
             u: Vec::with_capacity(HELD_MAX * d),
         }
     }
@@ -65,7 +67,7 @@ impl Held {
     fn clear(&mut self) {
         self.scale.clear();
         self.phi.clear();
-        self.wphi.clear();
+        self.w.clear();
         self.u.clear();
     }
 }
@@ -76,12 +78,12 @@ impl Clone for Held {
         let mut c = Self {
             scale: Vec::with_capacity(HELD_MAX),
             phi: Vec::with_capacity(self.phi.capacity()),
-            wphi: Vec::with_capacity(self.wphi.capacity()),
+            w: Vec::with_capacity(HELD_MAX),
             u: Vec::with_capacity(self.u.capacity()),
         };
         c.scale.extend_from_slice(&self.scale);
         c.phi.extend_from_slice(&self.phi);
-        c.wphi.extend_from_slice(&self.wphi);
+        c.w.extend_from_slice(&self.w);
         c.u.extend_from_slice(&self.u);
         c
     }
@@ -155,8 +157,7 @@ impl Stats {
         h.scale.push(f.unwrap_or(1.0));
         h.phi.extend_from_slice(phi);
         h.phi.extend_from_slice(&[0.0; PAD]);
-        h.wphi.extend(phi.iter().map(|x| w * x));
-        h.wphi.extend_from_slice(&[0.0; PAD]);
+        h.w.push(w);
         h.u.extend_from_slice(u);
         self.yy += w * u.iter().map(|x| x * x).sum::<f64>();
         self.sw += w;
@@ -188,7 +189,7 @@ impl Stats {
             return;
         }
         let n = h.len();
-        assert!(h.phi.len() == n * (p + PAD) && h.wphi.len() == h.phi.len() && h.u.len() == n * d);
+        assert!(h.phi.len() == n * (p + PAD) && h.w.len() == n && h.u.len() == n * d);
         let mut group = Group::new();
         // The lower triangle of G, column by column, in blocks of rows.
         let m = self.gram.as_mut_slice();
@@ -228,13 +229,11 @@ fn gram_group(t: &Group, h: &Held, p: usize, _d: usize, m: &mut [f64]) {
     for g in 0..t.n {
         let (off, col, row, len) = (t.off[g], t.col[g], t.row[g], t.len[g]);
         let acc = &mut m[off..off + len];
-        let samples = h
-            .phi
-            .chunks_exact(p + PAD)
-            .zip(h.wphi.chunks_exact(p + PAD));
-        for ((phi, wphi), &f) in samples.zip(&h.scale) {
+        let samples = h.phi.chunks_exact(p + PAD).zip(&h.w);
+        for ((phi, &w), &f) in samples.zip(&h.scale) {
+            let wj = w * phi[col];
             for (a, x) in acc.iter_mut().zip(&phi[row..row + len]) {
-                *a = *a * f + wphi[col] * x;
+                *a = *a * f + wj * x;
             }
         }
     }
@@ -246,9 +245,14 @@ fn cross_group(t: &Group, h: &Held, p: usize, d: usize, m: &mut [f64]) {
     for g in 0..t.n {
         let (off, col, row, len) = (t.off[g], t.col[g], t.row[g], t.len[g]);
         let acc = &mut m[off..off + len];
-        let samples = h.wphi.chunks_exact(p + PAD).zip(h.u.chunks_exact(d));
-        for ((wphi, u), &f) in samples.zip(&h.scale) {
-            for (a, wx) in acc.iter_mut().zip(&wphi[row..row + len]) {
+        let samples = h
+            .phi
+            .chunks_exact(p + PAD)
+            .zip(&h.w)
+            .zip(h.u.chunks_exact(d));
+        for (((phi, &w), u), &f) in samples.zip(&h.scale) {
+            for (a, x) in acc.iter_mut().zip(&phi[row..row + len]) {
+                let wx = w * x;
                 *a = *a * f + wx * u[col];
             }
         }

@@ -84,7 +84,7 @@ fn check(t: &Group, h: &Held, p: usize, cols: usize, d: usize, m: &[f64]) {
         assert!(t.row[g] + LANES <= p + PAD && t.col[g] < cols);
     }
     let n = h.len();
-    assert!(h.phi.len() == n * (p + PAD) && h.wphi.len() == h.phi.len() && h.u.len() == n * d);
+    assert!(h.phi.len() == n * (p + PAD) && h.w.len() == n && h.u.len() == n * d);
 }
 
 /// [`crate::held`]'s `gram_group` on AVX registers, [`PASS`] blocks at a time.
@@ -95,10 +95,10 @@ unsafe fn gram_body(t: &Group, h: &Held, p: usize, d: usize, m: &mut [f64]) {
         let mut acc = load(t, m, b);
         for s in 0..h.len() {
             let phi = h.phi.as_ptr().add(s * (p + PAD));
-            let wphi = h.wphi.as_ptr().add(s * (p + PAD));
+            let w = *h.w.get_unchecked(s);
             rescale(&mut acc, *h.scale.get_unchecked(s));
             unroll_pass!(g => {
-                let wj = _mm256_set1_pd(*wphi.add(t.col[b + g]));
+                let wj = _mm256_set1_pd(w * *phi.add(t.col[b + g]));
                 let x = phi.add(t.row[b + g]);
                 acc[2 * g] = _mm256_add_pd(acc[2 * g], _mm256_mul_pd(wj, _mm256_loadu_pd(x)));
                 let x = _mm256_loadu_pd(x.add(4));
@@ -117,14 +117,16 @@ unsafe fn cross_body(t: &Group, h: &Held, p: usize, d: usize, m: &mut [f64]) {
     for b in (0..t.n).step_by(PASS) {
         let mut acc = load(t, m, b);
         for s in 0..h.len() {
-            let wphi = h.wphi.as_ptr().add(s * (p + PAD));
+            let phi = h.phi.as_ptr().add(s * (p + PAD));
+            let w = _mm256_set1_pd(*h.w.get_unchecked(s));
             let u = h.u.as_ptr().add(s * d);
             rescale(&mut acc, *h.scale.get_unchecked(s));
             unroll_pass!(g => {
                 let uk = _mm256_set1_pd(*u.add(t.col[b + g]));
-                let wx = wphi.add(t.row[b + g]);
-                acc[2 * g] = _mm256_add_pd(acc[2 * g], _mm256_mul_pd(_mm256_loadu_pd(wx), uk));
-                let wx = _mm256_loadu_pd(wx.add(4));
+                let x = phi.add(t.row[b + g]);
+                let wx = _mm256_mul_pd(w, _mm256_loadu_pd(x));
+                acc[2 * g] = _mm256_add_pd(acc[2 * g], _mm256_mul_pd(wx, uk));
+                let wx = _mm256_mul_pd(w, _mm256_loadu_pd(x.add(4)));
                 acc[2 * g + 1] = _mm256_add_pd(acc[2 * g + 1], _mm256_mul_pd(wx, uk));
             });
         }
@@ -168,7 +170,7 @@ unsafe fn gram_avx512(t: &Group, h: &Held, p: usize, d: usize, m: &mut [f64]) {
     let mut acc = load512(t, m);
     for s in 0..h.len() {
         let phi = h.phi.as_ptr().add(s * (p + PAD));
-        let wphi = h.wphi.as_ptr().add(s * (p + PAD));
+        let w = *h.w.get_unchecked(s);
         let f = *h.scale.get_unchecked(s);
         if f != 1.0 {
             let f = _mm512_set1_pd(f);
@@ -177,7 +179,7 @@ unsafe fn gram_avx512(t: &Group, h: &Held, p: usize, d: usize, m: &mut [f64]) {
             });
         }
         unroll!(g => {
-            let wj = _mm512_set1_pd(*wphi.add(t.col[g]));
+            let wj = _mm512_set1_pd(w * *phi.add(t.col[g]));
             let x = _mm512_loadu_pd(phi.add(t.row[g]));
             acc[g] = _mm512_add_pd(acc[g], _mm512_mul_pd(wj, x));
         });
@@ -191,7 +193,8 @@ unsafe fn cross_avx512(t: &Group, h: &Held, p: usize, d: usize, m: &mut [f64]) {
     check(t, h, p, d, d, m);
     let mut acc = load512(t, m);
     for s in 0..h.len() {
-        let wphi = h.wphi.as_ptr().add(s * (p + PAD));
+        let phi = h.phi.as_ptr().add(s * (p + PAD));
+        let w = _mm512_set1_pd(*h.w.get_unchecked(s));
         let u = h.u.as_ptr().add(s * d);
         let f = *h.scale.get_unchecked(s);
         if f != 1.0 {
@@ -202,7 +205,7 @@ unsafe fn cross_avx512(t: &Group, h: &Held, p: usize, d: usize, m: &mut [f64]) {
         }
         unroll!(g => {
             let uk = _mm512_set1_pd(*u.add(t.col[g]));
-            let wx = _mm512_loadu_pd(wphi.add(t.row[g]));
+            let wx = _mm512_mul_pd(w, _mm512_loadu_pd(phi.add(t.row[g])));
             acc[g] = _mm512_add_pd(acc[g], _mm512_mul_pd(wx, uk));
         });
     }
