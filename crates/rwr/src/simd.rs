@@ -4,7 +4,9 @@
 //! A copy is the same Rust code compiled with AVX2 enabled: four lanes instead of two, the same
 //! operations in the same order per element (Rust never fuses a multiply and an add on its
 //! own), so the results are the same bits on every x86-64 CPU — tested here and in `held.rs`
-//! against the baseline copy.
+//! against the baseline copy. The workspace builds that copy for x86-64-v3 (AVX2 already;
+//! `.cargo/config.toml`), so `.ci/run` runs these tests once more on a build for the SSE2
+//! baseline (`docs/decisions.md`, D52).
 
 /// Whether the CPU supports AVX2 (cached by the standard library after the first query).
 #[cfg(target_arch = "x86_64")]
