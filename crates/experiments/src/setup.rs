@@ -268,8 +268,8 @@ impl Setup {
 
     /// The learner config a training run starts from: [`Setup::learner_config`]; for a family,
     /// with the static gravity model's on-policy learning off unless the family's
-    /// `static_gravity_on_policy` is on, and the family's `command_projection` and
-    /// `neighbour_cutoff` (`docs/family.md`).
+    /// `static_gravity_on_policy` is on, and the family's `command_projection`,
+    /// `neighbour_cutoff` and `controller_bilinear` (`docs/family.md`).
     pub fn training_learner_config(&self) -> LearnerConfig {
         let mut cfg = self.learner.clone();
         if self.trajectory.kind == osrl_control::TrajectoryKind::Family {
@@ -277,6 +277,7 @@ impl Setup {
             cfg.gravity.static_on_policy &= family.static_gravity_on_policy;
             cfg.controllers.command_projection = family.command_projection;
             cfg.controllers.neighbour_cutoff = family.neighbour_cutoff;
+            cfg.controllers.bilinear = family.controller_bilinear;
         }
         cfg
     }
@@ -542,6 +543,20 @@ mod tests {
         fam.family.command_projection = 1.5;
         let err = s.clone().with_trajectory(fam).unwrap_err().to_string();
         assert!(err.contains("command_projection = 1.5"), "{err}");
+    }
+
+    #[test]
+    fn family_training_takes_the_familys_controller_features() {
+        let s = Setup::new("planar3").unwrap();
+        let bilinear = |s: &Setup| s.training_learner_config().controllers.bilinear;
+        assert!(!bilinear(&s));
+        let mut fam = s.family_config();
+        assert!(!bilinear(&s.clone().with_trajectory(fam.clone()).unwrap()));
+        fam.family.controller_bilinear = true;
+        let family = s.clone().with_trajectory(fam).unwrap();
+        assert!(bilinear(&family));
+        // The set-up's own learner config is unchanged.
+        assert!(!family.learner_config().controllers.bilinear);
     }
 
     #[test]

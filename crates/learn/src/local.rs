@@ -67,8 +67,9 @@ pub struct Local {
 /// What a new local controller is made of: its feature counts and regression settings.
 #[derive(Clone, Debug)]
 pub(crate) struct LocalSpec<'a> {
-    /// Features `p` of the controller, joints `n`, task dimensions `m`.
+    /// Features `p` of the controller, the row of its constant, joints `n`, task dimensions `m`.
     pub p: usize,
+    pub constant: usize,
     pub n: usize,
     pub m: usize,
     /// Features of the local dynamics regression.
@@ -217,7 +218,7 @@ impl LocalControllers {
         let (theta, sigma) = init.unwrap_or_else(|| {
             let mut theta = DMatrix::zeros(spec.p, spec.n);
             for (j, u) in u_init.iter().enumerate() {
-                theta[(spec.p - 1, j)] = *u;
+                theta[(spec.constant, j)] = *u;
             }
             (theta, spec.rwr.sigma_init)
         });
@@ -247,14 +248,14 @@ impl LocalControllers {
     }
 
     /// The blend of the trained controllers active at `center` (activations `acts` there, each
-    /// weighted by its confidence) as one controller centred at `center`: each `β_j` with its
-    /// constant moved so that it gives the same command at every `q` (`position` features at
-    /// rows `q_rows`), and their blended `σ`. `None` if no trained controller is active.
+    /// weighted by its confidence) as one controller centred at `center`: each `β_j` moved to
+    /// `center` so that it gives the same command at every `q` (`Features::recentre`), and
+    /// their blended `σ`. `None` if no trained controller is active.
     pub(crate) fn neighbour_blend(
         &self,
         acts: &[lwpr::Activation],
         center: &[f64],
-        q_rows: Option<std::ops::Range<usize>>,
+        features: &crate::learner::Features,
         trained_ess: f64,
     ) -> Option<(DMatrix<f64>, f64)> {
         let mut out: Option<(DMatrix<f64>, f64)> = None;
@@ -268,17 +269,7 @@ impl LocalControllers {
                 continue;
             }
             let mut beta = l.rwr.theta().clone();
-            if let Some(rows) = q_rows.clone() {
-                let last = beta.nrows() - 1;
-                for k in 0..beta.ncols() {
-                    let shift: f64 = rows
-                        .clone()
-                        .enumerate()
-                        .map(|(i, r)| beta[(r, k)] * (center[i] - l.center[i]))
-                        .sum();
-                    beta[(last, k)] += shift;
-                }
-            }
+            features.recentre(&mut beta, &l.center, center);
             let (acc, sigma) =
                 out.get_or_insert_with(|| (DMatrix::zeros(beta.nrows(), beta.ncols()), 0.0));
             *acc += w * beta;

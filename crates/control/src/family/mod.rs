@@ -78,6 +78,13 @@ pub struct FamilyConfig {
     /// (about 13.6 kernel widths): a drawn path's stops leave the fields within milliseconds,
     /// faster than a shorter fade hands the arm to `u0`'s pull to rest smoothly.
     pub neighbour_cutoff: f64,
+    /// The learner's `[learner.controllers] bilinear` during family training: the local
+    /// controllers' features also have `ẍ_j (q_k − c_k)`, the change of the command's slope in
+    /// `ẍ` (eq. 7's `M J⁺`) across a field, which a field crossed by many paths sees at every
+    /// posture of its support. Default false: on planar3 it lowers the command error of the
+    /// held-out paths on most seeds but brakes twice as many episodes and learns slower; on
+    /// sarcos7 (21 more features) it is slower and worse (`docs/decisions.md`, D54).
+    pub controller_bilinear: bool,
 }
 
 impl Default for FamilyConfig {
@@ -102,6 +109,7 @@ impl Default for FamilyConfig {
             static_gravity_on_policy: false,
             command_projection: 1.0,
             neighbour_cutoff: 1e-40,
+            controller_bilinear: false,
         }
     }
 }

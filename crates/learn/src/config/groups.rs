@@ -212,6 +212,12 @@ pub struct ControllerConfig {
     /// robot profile. Set, it wins over the profile. The estimated `N` is saved with the model.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub metric: Option<CostMetric>,
+    /// The features of eq. 31 also have the products `ẍ_j (q_k − c_i,k)` (`m n` more, after the
+    /// constant; needs the position features): the command's slope in `ẍ`, `M J⁺` in eq. 7,
+    /// changes across a field. Default false: along one path `ẍ_ref` is nearly a function of
+    /// `q` within a field, so the products add parameters and nothing to fit. Training on a
+    /// family of paths uses `[trajectory.family] controller_bilinear` instead.
+    pub bilinear: bool,
 }
 
 /// The local dynamics `ẍ ≈ [uᵀ, q̇ᵀ, (q − c)ᵀ, 1, u_j (q_k − c_k)] Θ` of each receptive field, by
@@ -430,6 +436,7 @@ impl Default for ControllerConfig {
             damping_bound: 0.0,
             step_spread: 1,
             metric: None,
+            bilinear: false,
         }
     }
 }

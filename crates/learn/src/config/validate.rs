@@ -162,6 +162,11 @@ impl LearnerConfig {
         ensure(c.step_spread >= 1, || {
             "controllers.step_spread must be ≥ 1".into()
         })?;
+        ensure(!c.bilinear || self.experimental.position_features, || {
+            "controllers.bilinear needs the position features `q − c` \
+             (experimental.position_features)"
+                .into()
+        })?;
         let e = &self.exploration;
         ensure(finite_at_least(e.correlation_time, 0.0), || {
             format!(

@@ -9,8 +9,9 @@ const SMALL_N: usize = 16;
 
 /// Where each part of the two feature vectors lives, for `n` joints and `m` task dimensions.
 ///
-/// - controller `φ = [ẍᵀ, q̇ᵀ, (q − c)ᵀ?, 1]` (eq. 31; `ẍ` is `ẍ_ref` when commanding and the
-///   measured `ẍ` in hindsight; the position part is optional);
+/// - controller `φ = [ẍᵀ, q̇ᵀ, (q − c)ᵀ?, 1, (ẍ_j (q_k − c_k))?]` (eq. 31; `ẍ` is `ẍ_ref` when
+///   commanding and the measured `ẍ` in hindsight; the position part and the bilinear part are
+///   optional);
 /// - local dynamics `φ_d = [uᵀ, q̇ᵀ, (q − c)ᵀ, 1, (u_j (q_k − c_k))?]`, regressed on `ẍ`; its `u`
 ///   rows (and the bilinear ones) give `Â(q) = ∂ẍ/∂u`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -19,6 +20,7 @@ pub(crate) struct Features {
     m: usize,
     position: bool,
     bilinear: bool,
+    controller_bilinear: bool,
 }
 
 impl Features {
@@ -28,12 +30,40 @@ impl Features {
             m,
             position,
             bilinear,
+            controller_bilinear: false,
         }
+    }
+
+    /// The same layout with (or without) the controllers' bilinear part `ẍ_j (q_k − c_k)`.
+    pub fn with_controller_bilinear(self, on: bool) -> Self {
+        Self {
+            controller_bilinear: on,
+            ..self
+        }
+    }
+
+    /// Row of the controller's constant feature.
+    pub fn controller_constant(&self) -> usize {
+        self.m + self.n + if self.position { self.n } else { 0 }
+    }
+
+    /// Rows of the controller's bilinear part, `ẍ_j (q_k − c_k)` at `start + j n + k`, if the
+    /// layout has it.
+    pub fn controller_bilinear_rows(&self) -> Option<std::ops::Range<usize>> {
+        let start = self.controller_constant() + 1;
+        self.controller_bilinear
+            .then(|| start..start + self.m * self.n)
     }
 
     /// Length of the controller features `φ`.
     pub fn controller_len(&self) -> usize {
-        self.m + self.n + 1 + if self.position { self.n } else { 0 }
+        self.controller_constant()
+            + 1
+            + if self.controller_bilinear {
+                self.m * self.n
+            } else {
+                0
+            }
     }
 
     /// Length of the local dynamics features `φ_d`.
@@ -46,16 +76,51 @@ impl Features {
         let (n, m) = (self.n, self.m);
         phi[..m].copy_from_slice(xdd);
         phi[m..m + n].copy_from_slice(qd);
-        let last = phi.len() - 1;
-        phi[last] = 1.0;
+        phi[self.controller_constant()] = 1.0;
     }
 
-    /// The part of `φ` of the field centred at `center` (`q − c`), if the layout has it.
+    /// Moves a controller's coefficients `beta` (`φ`-rows × n) from the centre `from` to `to`
+    /// so that it gives the same command at every `q` and `ẍ`: the constant takes up the
+    /// position part's `β_qᵀ (to − from)`, each `ẍ_j` row the bilinear part's
+    /// `Σ_k β_{jk} (to_k − from_k)`. Without a position part there is nothing to move.
+    pub fn recentre(&self, beta: &mut DMatrix<f64>, from: &[f64], to: &[f64]) {
+        if !self.position {
+            return;
+        }
+        let (n, m) = (self.n, self.m);
+        let last = self.controller_constant();
+        for k in 0..beta.ncols() {
+            let shift: f64 = (m + n..m + 2 * n)
+                .enumerate()
+                .map(|(i, r)| beta[(r, k)] * (to[i] - from[i]))
+                .sum();
+            beta[(last, k)] += shift;
+            if let Some(rows) = self.controller_bilinear_rows() {
+                for j in 0..m {
+                    let shift: f64 = (0..n)
+                        .map(|i| beta[(rows.start + j * n + i, k)] * (to[i] - from[i]))
+                        .sum();
+                    beta[(j, k)] += shift;
+                }
+            }
+        }
+    }
+
+    /// The parts of `φ` of the field centred at `center` (`q − c` and `ẍ_j (q_k − c_k)`), if
+    /// the layout has them. Reads `ẍ` from `φ`: call after [`Self::controller_common`].
     pub fn controller_local(&self, phi: &mut [f64], q: &[f64], center: &[f64]) {
+        let (n, m) = (self.n, self.m);
         if self.position {
-            let (n, m) = (self.n, self.m);
             for i in 0..n {
                 phi[m + n + i] = q[i] - center[i];
+            }
+        }
+        if let Some(rows) = self.controller_bilinear_rows() {
+            let (head, bilinear) = phi.split_at_mut(rows.start);
+            for (j, row) in bilinear[..m * n].chunks_exact_mut(n).enumerate() {
+                for (k, o) in row.iter_mut().enumerate() {
+                    *o = head[j] * (q[k] - center[k]);
+                }
             }
         }
     }
@@ -293,6 +358,58 @@ mod tests {
         );
         // u_j (q_k − c_k), row j.
         assert_eq!(&d[10..], &[1.0, 0.0, -1.0, 2.0, 0.0, -2.0, 3.0, 0.0, -3.0]);
+    }
+
+    /// The controllers' bilinear part: `ẍ_j (q_k − c_k)` after the constant, row `j`.
+    #[test]
+    fn the_controller_bilinear_part_follows_the_constant() {
+        let f = Features::new(3, 2, true, true).with_controller_bilinear(true);
+        assert_eq!(f.controller_len(), 2 + 3 + 3 + 1 + 2 * 3);
+        assert_eq!(f.controller_bilinear_rows(), Some(9..15));
+        let mut phi = vec![f64::NAN; f.controller_len()];
+        f.controller_common(&mut phi, &[1.0, 2.0], &[3.0, 4.0, 5.0]);
+        f.controller_local(&mut phi, &[1.0, 1.0, 1.0], &[0.5, 0.0, 2.0]);
+        let want = [1.0, 2.0, 3.0, 4.0, 5.0, 0.5, 1.0, -1.0, 1.0];
+        assert_eq!(&phi[..9], &want);
+        assert_eq!(&phi[9..], &[0.5, 1.0, -1.0, 1.0, 2.0, -2.0]);
+        let off = Features::new(3, 2, true, true).with_controller_bilinear(false);
+        assert_eq!(off, Features::new(3, 2, true, true));
+        assert_eq!(off.controller_bilinear_rows(), None);
+    }
+
+    /// A controller moved to another centre by `recentre` commands the same `u` at every `q`,
+    /// `q̇` and `ẍ`, with and without the bilinear part; without position features it is
+    /// unchanged.
+    #[test]
+    fn a_recentred_controller_commands_the_same() {
+        for bilinear in [false, true] {
+            let f = Features::new(3, 2, true, true).with_controller_bilinear(bilinear);
+            let p = f.controller_len();
+            let beta = DMatrix::from_fn(p, 3, |r, c| ((r * 7 + c * 3) as f64 * 0.913).sin());
+            let (from, to) = ([0.1, -0.4, 0.7], [0.35, -0.1, 0.2]);
+            let mut moved = beta.clone();
+            f.recentre(&mut moved, &from, &to);
+            assert_ne!(moved, beta);
+            for t in 0..5 {
+                let t = t as f64;
+                let xdd = [(t * 1.1).sin(), (t * 0.7).cos()];
+                let qd = [0.3 * t, -0.2, (t * 0.4).sin()];
+                let q = [(t * 0.5).cos(), 0.2 * t - 0.5, (t * 1.7).sin()];
+                let command = |beta: &DMatrix<f64>, c: &[f64]| {
+                    let mut phi = vec![f64::NAN; p];
+                    f.controller_common(&mut phi, &xdd, &qd);
+                    f.controller_local(&mut phi, &q, c);
+                    beta.tr_mul(&nalgebra::DVector::from_vec(phi))
+                };
+                let (a, b) = (command(&beta, &from), command(&moved, &to));
+                assert!((&a - &b).amax() < 1e-12, "bilinear {bilinear}: {a} vs {b}");
+            }
+        }
+        let f = Features::new(3, 2, false, true).with_controller_bilinear(false);
+        let beta = DMatrix::from_fn(f.controller_len(), 3, |r, c| (r + c) as f64);
+        let mut moved = beta.clone();
+        f.recentre(&mut moved, &[0.0; 3], &[1.0; 3]);
+        assert_eq!(moved, beta);
     }
 
     /// The gain from a table of `gain_table` is `add_gain`'s, bit for bit, for 3 task rows and

@@ -184,6 +184,7 @@ impl Step<'_> {
         };
         let spec = LocalSpec {
             p: self.features.controller_len(),
+            constant: self.features.controller_constant(),
             n: self.n,
             m: self.m,
             dynamics_features: self.features.dynamics_len(),
@@ -194,11 +195,6 @@ impl Step<'_> {
         };
         let models = &mut *self.models;
         let (n, cutoff) = (self.n, self.cfg.partition.activation_cutoff);
-        let q_rows = self
-            .cfg
-            .experimental
-            .position_features
-            .then(|| self.m + n..self.m + 2 * n);
         for event in &self.ws.events {
             match *event {
                 RfEvent::Added { id, .. } => {
@@ -214,7 +210,7 @@ impl Step<'_> {
                     let init = models.locals.neighbour_blend(
                         &self.ws.acts,
                         &center,
-                        q_rows.clone(),
+                        self.features,
                         spec.trained_ess,
                     );
                     let now = self.stats.samples;

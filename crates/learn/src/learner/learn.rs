@@ -116,4 +116,28 @@ mod tests {
         fixture::sweep(&mut learner, &mut sim, 10);
         assert_eq!(learner.stats().samples, 60);
     }
+
+    /// With `controllers.bilinear` every controller has `m n` more features and the learner
+    /// still learns; without the position features the option is refused.
+    #[test]
+    fn bilinear_controllers_have_the_products_and_need_the_position_features() {
+        let mut cfg = fixture::config();
+        cfg.controllers.bilinear = true;
+        let (mut learner, _, _) = fixture::ready(cfg.clone(), 50, 2000);
+        assert_eq!(learner.features.controller_len(), 2 + 3 + 3 + 1 + 2 * 3);
+        let models = fixture::models(&mut learner);
+        let locals = &models.locals.map;
+        assert!(locals.values().any(|l| l.updates > 0));
+        for local in locals.values() {
+            let theta = local.rwr.theta();
+            assert_eq!(theta.nrows(), 15);
+            assert!(theta.iter().all(|x| x.is_finite()));
+        }
+        // The products are fitted, not left at their start.
+        let products = |l: &crate::local::Local| l.rwr.theta().rows(9, 6).amax();
+        assert!(locals.values().any(|l| l.updates > 0 && products(l) > 0.0));
+        cfg.experimental.position_features = false;
+        let err = Learner::new(3, 2, 0.002, cfg).unwrap_err().to_string();
+        assert!(err.contains("controllers.bilinear"), "{err}");
+    }
 }

@@ -78,7 +78,8 @@ impl Learner {
             )));
         }
         let x = &cfg.experimental;
-        let features = Features::new(n, m, x.position_features, x.dynamics_bilinear);
+        let features = Features::new(n, m, x.position_features, x.dynamics_bilinear)
+            .with_controller_bilinear(cfg.controllers.bilinear);
         let ws = Scratch::new(n, m, features.controller_len(), features.dynamics_len());
         let noise = Noise::with_rate(
             n,
