@@ -88,14 +88,14 @@ impl Features {
             return;
         }
         let (n, m) = (self.n, self.m);
-        let last = self.controller_constant();
+        let (last, products) = (self.controller_constant(), self.controller_bilinear_rows());
         for k in 0..beta.ncols() {
             let shift: f64 = (m + n..m + 2 * n)
                 .enumerate()
                 .map(|(i, r)| beta[(r, k)] * (to[i] - from[i]))
                 .sum();
             beta[(last, k)] += shift;
-            if let Some(rows) = self.controller_bilinear_rows() {
+            if let Some(rows) = &products {
                 for j in 0..m {
                     let shift: f64 = (0..n)
                         .map(|i| beta[(rows.start + j * n + i, k)] * (to[i] - from[i]))
