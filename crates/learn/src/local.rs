@@ -64,16 +64,11 @@ pub struct Local {
     pub gain_table: Vec<f64>,
 }
 
-/// What a new local controller is made of: its feature counts and regression settings.
+/// What a new local controller is made of: its feature layouts and regression settings.
 #[derive(Clone, Debug)]
 pub(crate) struct LocalSpec<'a> {
-    /// Features `p` of the controller, the row of its constant, joints `n`, task dimensions `m`.
-    pub p: usize,
-    pub constant: usize,
-    pub n: usize,
-    pub m: usize,
-    /// Features of the local dynamics regression.
-    pub dynamics_features: usize,
+    /// The layouts of the controller's `φ` and the local dynamics' `φ_d`.
+    pub features: crate::learner::Features,
     /// Forgetting and trust region (m/s², 0 = none) of the local dynamics regression.
     pub dynamics_forgetting: f64,
     pub dynamics_trust_region: f64,
@@ -215,10 +210,12 @@ impl LocalControllers {
         spec: &LocalSpec,
         now: u64,
     ) -> Result<()> {
+        let f = &spec.features;
+        let (n, m) = f.dims();
         let (theta, sigma) = init.unwrap_or_else(|| {
-            let mut theta = DMatrix::zeros(spec.p, spec.n);
+            let mut theta = DMatrix::zeros(f.controller_len(), n);
             for (j, u) in u_init.iter().enumerate() {
-                theta[(spec.constant, j)] = *u;
+                theta[(f.controller_constant(), j)] = *u;
             }
             (theta, spec.rwr.sigma_init)
         });
@@ -227,7 +224,7 @@ impl LocalControllers {
             ..spec.rwr.clone()
         };
         let rwr = OnlineRwr::with_theta(theta, cfg.clone())?;
-        let dynamics = OnlineRwr::new(spec.dynamics_features, spec.m, dynamics_config(cfg, spec))?;
+        let dynamics = OnlineRwr::new(f.dynamics_len(), m, dynamics_config(cfg, spec))?;
         self.map.insert(
             id,
             Local {
@@ -241,7 +238,7 @@ impl LocalControllers {
                 last_active: now,
                 theta_from: None,
                 ramp: 0,
-                gain_table: Vec::with_capacity(spec.m * (spec.n + spec.n * spec.n)),
+                gain_table: Vec::with_capacity(m * (n + n * n)),
             },
         );
         Ok(())

@@ -42,9 +42,20 @@ impl Features {
         }
     }
 
+    /// Joints `n` and task dimensions `m` of the layout.
+    pub fn dims(&self) -> (usize, usize) {
+        (self.n, self.m)
+    }
+
+    /// Rows of the controller's position part `q − c`, if the layout has it.
+    pub fn controller_q_rows(&self) -> Option<std::ops::Range<usize>> {
+        let start = self.m + self.n;
+        self.position.then(|| start..start + self.n)
+    }
+
     /// Row of the controller's constant feature.
     pub fn controller_constant(&self) -> usize {
-        self.m + self.n + if self.position { self.n } else { 0 }
+        self.m + self.n + self.controller_q_rows().map_or(0, |r| r.len())
     }
 
     /// Rows of the controller's bilinear part, `ẍ_j (q_k − c_k)` at `start + j n + k`, if the
@@ -84,13 +95,13 @@ impl Features {
     /// position part's `β_qᵀ (to − from)`, each `ẍ_j` row the bilinear part's
     /// `Σ_k β_{jk} (to_k − from_k)`. Without a position part there is nothing to move.
     pub fn recentre(&self, beta: &mut DMatrix<f64>, from: &[f64], to: &[f64]) {
-        if !self.position {
+        let Some(q_rows) = self.controller_q_rows() else {
             return;
-        }
+        };
         let (n, m) = (self.n, self.m);
         let (last, products) = (self.controller_constant(), self.controller_bilinear_rows());
         for k in 0..beta.ncols() {
-            let shift: f64 = (m + n..m + 2 * n)
+            let shift: f64 = (q_rows.clone())
                 .enumerate()
                 .map(|(i, r)| beta[(r, k)] * (to[i] - from[i]))
                 .sum();
@@ -110,9 +121,9 @@ impl Features {
     /// the layout has them. Reads `ẍ` from `φ`: call after [`Self::controller_common`].
     pub fn controller_local(&self, phi: &mut [f64], q: &[f64], center: &[f64]) {
         let (n, m) = (self.n, self.m);
-        if self.position {
-            for i in 0..n {
-                phi[m + n + i] = q[i] - center[i];
+        if let Some(rows) = self.controller_q_rows() {
+            for ((o, q), c) in phi[rows].iter_mut().zip(q).zip(center) {
+                *o = q - c;
             }
         }
         if let Some(rows) = self.controller_bilinear_rows() {

@@ -183,11 +183,7 @@ impl Step<'_> {
             cur.u.as_slice()
         };
         let spec = LocalSpec {
-            p: self.features.controller_len(),
-            constant: self.features.controller_constant(),
-            n: self.n,
-            m: self.m,
-            dynamics_features: self.features.dynamics_len(),
+            features: *self.features,
             dynamics_forgetting: self.cfg.dynamics.forgetting,
             dynamics_trust_region: self.cfg.dynamics.trust_region,
             rwr: &self.cfg.controllers.rwr,
