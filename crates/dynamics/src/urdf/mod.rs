@@ -36,9 +36,9 @@
 //!    viscous and Coulomb friction. A file that declares `<osrl identified_inertias="true"/>` (a
 //!    child of `<robot>`) skips the inertia check: identified base parameters (sarcos7's) are
 //!    consistent for the arm as a whole, not link by link; the export writes it for such models.
-//! 7. **Sizes**: at most [`MAX_URDF_BYTES`] bytes, [`MAX_XML_NODES`] XML nodes, [`MAX_LINKS`]
-//!    links, [`MAX_JOINTS`] joints and [`crate::model::MAX_DOF`] degrees of freedom. Loading takes
-//!    time linear in the file's size (names are looked up in hash maps, every walk over the tree is
+//! 7. **Sizes**: at most [`MAX_URDF_BYTES`] bytes, [`MAX_XML_NODES`] XML nodes nested at most
+//!    [`MAX_XML_DEPTH`] deep, [`MAX_LINKS`] links, [`MAX_JOINTS`] joints and
+//!    [`crate::model::MAX_DOF`] degrees of freedom. Loading takes time linear in the file's size (names are looked up in hash maps, every walk over the tree is
 //!    iterative, each link is visited once), so a chain of any depth within these limits loads.
 //!
 //! Gravity is the URDF convention (9.81 m/s² along −z); the task axes are the world axes the
@@ -71,6 +71,7 @@
 //! ```
 
 mod build;
+mod depth;
 mod export;
 mod profile_xml;
 mod select;
@@ -89,6 +90,9 @@ use serde::{Deserialize, Serialize};
 pub const MAX_URDF_BYTES: usize = 16 << 20;
 /// Largest number of XML nodes (elements and text) accepted, bounding the parser's memory.
 pub const MAX_XML_NODES: u32 = 2_000_000;
+/// Deepest nesting of XML elements accepted: URDF elements nest about five deep, and the
+/// parser descends recursively, so a deeper file is refused before it is parsed.
+pub const MAX_XML_DEPTH: usize = 256;
 /// Largest number of `<link>` elements accepted.
 pub const MAX_LINKS: usize = 100_000;
 /// Largest number of `<joint>` elements accepted.

@@ -79,6 +79,7 @@ pub(super) fn read(text: &str) -> Result<Raw> {
             text.len()
         ));
     }
+    super::depth::check_depth(text)?;
     let opts = ParsingOptions {
         allow_dtd: false,
         nodes_limit: MAX_XML_NODES,
