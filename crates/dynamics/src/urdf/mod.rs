@@ -38,8 +38,9 @@
 //!    consistent for the arm as a whole, not link by link; the export writes it for such models.
 //! 7. **Sizes**: at most [`MAX_URDF_BYTES`] bytes, [`MAX_XML_NODES`] XML nodes nested at most
 //!    [`MAX_XML_DEPTH`] deep, [`MAX_LINKS`] links, [`MAX_JOINTS`] joints and
-//!    [`crate::model::MAX_DOF`] degrees of freedom. Loading takes time linear in the file's size (names are looked up in hash maps, every walk over the tree is
-//!    iterative, each link is visited once), so a chain of any depth within these limits loads.
+//!    [`crate::model::MAX_DOF`] degrees of freedom. Loading takes time linear in the file's
+//!    size (names are looked up in hash maps, every walk over the tree is iterative, each link
+//!    is visited once), so a chain of any depth within these limits loads.
 //!
 //! Gravity is the URDF convention (9.81 m/s² along −z); the task axes are the world axes the
 //! end-effector can move along (a planar arm gets a 2-D task); start and rest postures are the
