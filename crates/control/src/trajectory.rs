@@ -113,6 +113,22 @@ fn positive(what: &str, v: f64) -> Result<()> {
     }
 }
 
+/// Longest period, move time or start ramp of a path (s): an hour. Runs and evaluations step
+/// through the ramp and sample whole cycles, so absurd durations would never finish.
+pub const MAX_PATH_SECONDS: f64 = 3600.0;
+
+/// `v` is a duration in `(0, MAX_PATH_SECONDS]` (`[0, …]` with `zero_ok`).
+fn duration(what: &str, v: f64, zero_ok: bool) -> Result<()> {
+    if (v > 0.0 || (zero_ok && v == 0.0)) && v <= MAX_PATH_SECONDS {
+        Ok(())
+    } else {
+        let lo = if zero_ok { "≥ 0" } else { "> 0" };
+        Err(ControlError::InvalidTrajectory(format!(
+            "{what} must be {lo} and at most {MAX_PATH_SECONDS} s, got {v}"
+        )))
+    }
+}
+
 impl Trajectory {
     /// A figure-8 (see [`Shape::Figure8`]) with period `period` (s) and start ramp `ramp` (s).
     /// `e1`, `e2` are normalised. Fails on non-finite values, a non-positive size or period, a
@@ -172,7 +188,7 @@ impl Trajectory {
         for p in &points {
             finite("point", p)?;
         }
-        positive("move_time", move_time)?;
+        duration("move_time", move_time, false)?;
         let period = move_time * points.len() as f64;
         let shape = Shape::MinJerk { points, move_time };
         Ok(Self {
@@ -184,12 +200,8 @@ impl Trajectory {
     }
 
     fn periodic(shape: Shape, period: f64, ramp: f64) -> Result<Self> {
-        positive("period", period)?;
-        if !(ramp >= 0.0 && ramp.is_finite()) {
-            return Err(ControlError::InvalidTrajectory(format!(
-                "ramp must be ≥ 0 s, got {ramp}"
-            )));
-        }
+        duration("period", period, false)?;
+        duration("ramp", ramp, true)?;
         Ok(Self {
             shape,
             period,

@@ -120,6 +120,25 @@ fn a_family_config_out_of_range_is_refused_with_its_field_and_value() {
     cfg.family.size = [0.3, 0.8];
     cfg.family.kinds = vec![TrajectoryKind::Family];
     assert!(cfg.build(&model).unwrap_err().to_string().contains("kinds"));
+    // Durations and speeds whose reachability check would not fit in memory (these panicked).
+    let mut slow = family();
+    slow.family.approach_speed = 1e-300;
+    let e = slow.build(&model).unwrap_err().to_string();
+    assert!(
+        e.contains("approach_speed = 1e-300: accepted within"),
+        "{e}"
+    );
+    let mut short = family();
+    short.family.move_time = [1e-300, 1e-300];
+    let e = short.build(&model).unwrap_err().to_string();
+    assert!(e.contains("move_time"), "{e}");
+    let mut long = family();
+    long.family.period = [1e300, 1e300];
+    assert!(long
+        .build(&model)
+        .unwrap_err()
+        .to_string()
+        .contains("period"));
     // A family no path can belong to (slower than any): a clear error after max_draws.
     let mut tiny = family();
     tiny.family.max_acceleration_ratio = 1e-9;

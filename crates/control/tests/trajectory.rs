@@ -155,6 +155,16 @@ fn unreachable_and_malformed_trajectories_give_clear_errors() {
     assert!(Trajectory::circle(c, x, z, 0.0, 4.0, 1.0).is_err());
     assert!(Trajectory::min_jerk(vec![c], 1.0).is_err());
     assert!(Trajectory::min_jerk(vec![c, c], f64::INFINITY).is_err());
+    // Durations no run could step through (an evaluation with a ramp of 1e300 s never ended).
+    let e = Trajectory::figure8(c, x, z, 0.1, 0.1, 4.0, 1e300).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("ramp must be ≥ 0 and at most 3600 s"),
+        "{e}"
+    );
+    assert!(Trajectory::circle(c, x, z, 0.1, 1e300, 1.0).is_err());
+    assert!(Trajectory::min_jerk(vec![c, c], 1e300).is_err());
+    assert!(Trajectory::figure8(c, x, z, 0.1, 0.1, 3600.0, 3600.0).is_ok());
 }
 
 #[test]

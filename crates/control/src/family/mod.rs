@@ -13,6 +13,11 @@ use crate::error::{ControlError, Result};
 use crate::trajectory_config::TrajectoryKind;
 use serde::{Deserialize, Serialize};
 
+/// The range of a family's periods and move times (s).
+pub const FAMILY_SECONDS: (f64, f64) = (0.2, 600.0);
+/// The range of a family's approach speed (m/s).
+pub const APPROACH_SPEED: (f64, f64) = (0.01, 10.0);
+
 /// How a family of paths is drawn (`[trajectory.family]`, used when `[trajectory] kind =
 /// "family"`). Every path lies in the plane `e1`–`e2` of the `[trajectory]` section, inside the
 /// region around its centre; the figure-8 of that section (the robot's default one unless set)
@@ -127,8 +132,14 @@ impl FamilyConfig {
     pub fn validate(&self) -> Result<()> {
         let pos = |x: f64| x > 0.0 && x.is_finite();
         let range = |r: [f64; 2]| pos(r[0]) && r[0] <= r[1] && r[1].is_finite();
+        // A path's reachability check samples it, and its approach, at a spacing set by the
+        // period: absurd durations or speeds would take days or more memory than there is.
+        let (t_lo, t_hi) = FAMILY_SECONDS;
+        let seconds = |r: [f64; 2]| range(r) && r[0] >= t_lo && r[1] <= t_hi;
         let v = |x: &dyn std::fmt::Debug| format!("{x:?}");
-        let lo_hi = "[lo, hi] with 0 < lo ≤ hi, finite";
+        let lo_hi = format!("[lo, hi] with {t_lo} ≤ lo ≤ hi ≤ {t_hi} (s)");
+        let (s_lo, s_hi) = APPROACH_SPEED;
+        let speed = format!("within [{s_lo}, {s_hi}] (m/s)");
         // (field, its value, what is accepted, whether it is)
         let checks = [
             (
@@ -155,12 +166,17 @@ impl FamilyConfig {
                 "[lo, hi] with 0 < lo ≤ hi ≤ 1",
                 range(self.size) && self.size[1] <= 1.0,
             ),
-            ("period", v(&self.period), lo_hi, range(self.period)),
+            (
+                "period",
+                v(&self.period),
+                lo_hi.as_str(),
+                seconds(self.period),
+            ),
             (
                 "move_time",
                 v(&self.move_time),
-                lo_hi,
-                range(self.move_time),
+                lo_hi.as_str(),
+                seconds(self.move_time),
             ),
             (
                 "points",
@@ -177,8 +193,8 @@ impl FamilyConfig {
             (
                 "approach_speed",
                 v(&self.approach_speed),
-                "> 0, finite",
-                pos(self.approach_speed),
+                speed.as_str(),
+                (s_lo..=s_hi).contains(&self.approach_speed),
             ),
             (
                 "torque_share",

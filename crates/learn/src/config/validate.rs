@@ -16,6 +16,29 @@ fn finite_at_least(x: f64, lo: f64) -> bool {
     x.is_finite() && x >= lo
 }
 
+/// Most warm-up transitions (a day at 500 Hz would be 43 M): the learner keeps each one until
+/// the models are created (about 200 bytes), so this bounds that memory near 200 MB.
+pub const MAX_WARMUP_SAMPLES: usize = 1_000_000;
+
+/// The normalisation divisors a user gave an LWPR section, each within LWPR's range: the
+/// learner sets its models' scales itself, but the saved configuration keeps these values.
+fn check_norms(section: &str, cfg: &lwpr::LwprConfig) -> Result<()> {
+    let (lo, hi) = lwpr::NORM_RANGE;
+    for (key, norm) in [("norm_in", &cfg.norm_in), ("norm_out", &cfg.norm_out)] {
+        let values: &[f64] = match norm {
+            lwpr::Norm::Scalar(x) => std::slice::from_ref(x),
+            lwpr::Norm::List(v) => v,
+            lwpr::Norm::Keyword(_) => &[],
+        };
+        for x in values {
+            ensure((lo..=hi).contains(x), || {
+                format!("{section}.{key} = {x:e} must be within [{lo:e}, {hi:e}]")
+            })?;
+        }
+    }
+    Ok(())
+}
+
 impl LearnerConfig {
     /// Checks every field's range and that the nominal behaviour and the torque limits have `n`
     /// joints.
@@ -41,10 +64,24 @@ impl LearnerConfig {
                 format!("{what} needs {n} finite values, got {v:?}")
             })?;
         }
-        Ok(())
+        // The PD of the babbling and the returns home needs a restoring stiffness.
+        ensure(nom.kp.iter().all(|k| *k > 0.0), || {
+            format!(
+                "nominal.kp must be > 0 (N·m/rad) for every joint, got {:?}",
+                nom.kp
+            )
+        })?;
+        ensure(nom.kd.iter().all(|k| *k >= 0.0), || {
+            format!(
+                "nominal.kd must be ≥ 0 (N·m·s/rad) for every joint, got {:?}",
+                nom.kd
+            )
+        })
     }
 
     fn validate_models(&self) -> Result<()> {
+        check_norms("partition.lwpr", &self.partition.lwpr)?;
+        check_norms("gravity.lwpr", &self.gravity.lwpr)?;
         let p = &self.partition;
         let c = p.activation_cutoff;
         ensure(c > 0.0 && c < 1.0, || {
@@ -206,26 +243,89 @@ impl LearnerConfig {
                 )
             },
         )?;
-        ensure(g.torque_rate_limit.is_none_or(|r| r > 0.0), || {
-            format!(
-                "guards.torque_rate_limit {:?} must be > 0 (N·m/s)",
-                g.torque_rate_limit
-            )
+        ensure(
+            g.torque_rate_limit.is_none_or(|r| r > 0.0 && r.is_finite()),
+            || {
+                format!(
+                    "guards.torque_rate_limit {:?} must be finite and > 0 (N·m/s), or unset",
+                    g.torque_rate_limit
+                )
+            },
+        )?;
+        ensure(
+            (10..=MAX_WARMUP_SAMPLES).contains(&g.warmup_samples),
+            || {
+                format!(
+                    "guards.warmup_samples {} must be within [10, {MAX_WARMUP_SAMPLES}]",
+                    g.warmup_samples
+                )
+            },
+        )?;
+        let a = g.max_abs_acceleration;
+        ensure(a > 0.0 && a.is_finite(), || {
+            format!("guards.max_abs_acceleration {a} must be finite and > 0 (m/s²)")
         })?;
-        ensure(g.warmup_samples >= 10, || {
-            "guards.warmup_samples must be ≥ 10".into()
-        })?;
-        ensure(g.max_abs_acceleration > 0.0, || {
-            format!(
-                "guards.max_abs_acceleration {} must be > 0 (m/s²)",
-                g.max_abs_acceleration
-            )
-        })?;
-        ensure(g.max_abs_velocity > 0.0, || {
-            format!(
-                "guards.max_abs_velocity {} must be > 0 (rad/s)",
-                g.max_abs_velocity
-            )
-        })
+        ensure(
+            g.max_abs_velocity > 0.0 && g.max_abs_velocity.is_finite(),
+            || {
+                format!(
+                    "guards.max_abs_velocity {} must be finite and > 0 (rad/s)",
+                    g.max_abs_velocity
+                )
+            },
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Each edit alone makes the default configuration invalid, with the field named.
+    #[test]
+    fn values_that_crashed_or_could_not_be_saved_are_refused_by_name() {
+        let n = 3;
+        let edits: Vec<(&str, Box<dyn Fn(&mut LearnerConfig)>)> = vec![
+            ("nominal.kp", Box::new(|c| c.nominal.kp = vec![-1.0; 3])),
+            ("nominal.kd", Box::new(|c| c.nominal.kd[1] = -0.5)),
+            (
+                "guards.warmup_samples",
+                Box::new(|c| c.guards.warmup_samples = 1 << 40),
+            ),
+            (
+                "max_abs_velocity",
+                Box::new(|c| c.guards.max_abs_velocity = f64::INFINITY),
+            ),
+            (
+                "max_abs_acceleration",
+                Box::new(|c| c.guards.max_abs_acceleration = f64::INFINITY),
+            ),
+            (
+                "torque_rate_limit",
+                Box::new(|c| c.guards.torque_rate_limit = Some(f64::INFINITY)),
+            ),
+            (
+                "partition.lwpr.norm_in",
+                Box::new(|c| c.partition.lwpr.norm_in = lwpr::Norm::Scalar(f64::NAN)),
+            ),
+            (
+                "gravity.lwpr.norm_out",
+                Box::new(|c| c.gravity.lwpr.norm_out = lwpr::Norm::List(vec![1.0, 0.0, 1.0])),
+            ),
+        ];
+        let mut base = LearnerConfig::default();
+        base.nominal.kp = vec![10.0; n];
+        base.nominal.kd = vec![1.0; n];
+        base.nominal.q_rest = vec![0.0; n];
+        base.guards.torque_limits = vec![50.0; n];
+        base.validate(n).unwrap();
+        for (key, edit) in edits {
+            let mut c = base.clone();
+            edit(&mut c);
+            let e = c.validate(n).expect_err(key).to_string();
+            assert!(e.contains(key), "{key}: {e}");
+        }
+        base.guards.warmup_samples = MAX_WARMUP_SAMPLES;
+        base.validate(n).unwrap();
     }
 }
