@@ -57,6 +57,10 @@ impl BabbleConfig {
     }
 }
 
+/// Longest on-policy episode (s): an hour. An episode's path is built ahead, and one that long
+/// would not return home for the rest of most runs.
+pub const MAX_EPISODE_SECONDS: f64 = 3600.0;
+
 /// Settings of a training run.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -245,8 +249,8 @@ impl TrainConfig {
             (
                 "episode_seconds",
                 v(&self.episode_seconds),
-                pos,
-                finite_pos(self.episode_seconds),
+                "> 0 and at most 3600 (s)",
+                finite_pos(self.episode_seconds) && self.episode_seconds <= MAX_EPISODE_SECONDS,
             ),
             (
                 "reset_error",
@@ -347,5 +351,29 @@ mod tests {
         };
         let e = cfg.validate().unwrap_err().to_string();
         assert!(e.contains("command_step_limit = Some(-0.1)"), "{e}");
+        // Episodes and stops whose path, built ahead, took gigabytes and never finished.
+        let cfg = super::TrainConfig {
+            episode_seconds: 1e9,
+            ..Default::default()
+        };
+        let e = cfg.validate().unwrap_err().to_string();
+        assert!(
+            e.contains("episode_seconds = 1000000000.0: accepted > 0 and at most 3600"),
+            "{e}"
+        );
+        let mut cfg = super::TrainConfig::default();
+        cfg.curriculum.stop_every = 1e-6;
+        let e = cfg.validate().unwrap_err().to_string();
+        assert!(e.contains("curriculum.stop_every = 0.000001"), "{e}");
+        cfg.curriculum.stop_every = 0.0;
+        cfg.curriculum.hold_seconds = 1e300;
+        assert!(cfg
+            .validate()
+            .unwrap_err()
+            .to_string()
+            .contains("hold_seconds"));
+        cfg.curriculum.hold_seconds = 0.0;
+        cfg.episode_seconds = super::MAX_EPISODE_SECONDS;
+        cfg.validate().unwrap();
     }
 }

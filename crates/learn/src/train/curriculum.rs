@@ -63,6 +63,11 @@ impl Default for CurriculumConfig {
     }
 }
 
+/// Shortest mean time between the path clock's stops (s), unless 0 (no stops).
+pub const MIN_STOP_EVERY: f64 = 0.5;
+/// Longest deceleration or hold of a stop (s).
+pub const MAX_STOP_SECONDS: f64 = 60.0;
+
 impl CurriculumConfig {
     /// Checks every field's range.
     ///
@@ -77,21 +82,37 @@ impl CurriculumConfig {
                 ));
             }
         }
+        // (field, value, whether 0 is accepted, largest value): an episode's path is built
+        // ahead, a few segments per stop, so stops are at least `MIN_STOP_EVERY` apart.
         let fields = [
-            ("advance_error", self.advance_error, false),
-            ("stop_every", self.stop_every, true),
-            ("stop_seconds", self.stop_seconds, false),
-            ("hold_seconds", self.hold_seconds, true),
-            ("brake_error", self.brake_error, false),
-            ("brake_step", self.brake_step.unwrap_or(1.0), false),
+            ("advance_error", self.advance_error, false, f64::MAX),
+            ("stop_seconds", self.stop_seconds, false, MAX_STOP_SECONDS),
+            ("hold_seconds", self.hold_seconds, true, MAX_STOP_SECONDS),
+            ("brake_error", self.brake_error, false, f64::MAX),
+            (
+                "brake_step",
+                self.brake_step.unwrap_or(1.0),
+                false,
+                f64::MAX,
+            ),
         ];
         if self.retreat_after == 0 {
             return bad("curriculum.retreat_after = 0: must be at least 1".into());
         }
-        for (what, v, zero_ok) in fields {
-            if !(v.is_finite() && (v > 0.0 || (zero_ok && v == 0.0))) {
-                return bad(format!("curriculum.{what} = {v} is out of range"));
+        for (what, v, zero_ok, hi) in fields {
+            if !(v <= hi && (v > 0.0 || (zero_ok && v == 0.0))) {
+                return bad(format!(
+                    "curriculum.{what} = {v} is out of range ({} and at most {hi:e})",
+                    if zero_ok { "≥ 0" } else { "> 0" }
+                ));
             }
+        }
+        let e = self.stop_every;
+        if !(e == 0.0 || (MIN_STOP_EVERY..=f64::MAX).contains(&e)) {
+            return bad(format!(
+                "curriculum.stop_every = {e} is out of range (0: no stops, or at least \
+                 {MIN_STOP_EVERY} s, finite)"
+            ));
         }
         Ok(())
     }
