@@ -69,21 +69,42 @@ pub fn std_dev(rows: &[Vec<f64>], col: usize) -> f64 {
 pub const MAX_CONFIG_BYTES: u64 = 16 << 20;
 
 /// Checks, before any work, that `flag`'s `path` can be written as a file
-/// ([`osrl_files::check_output`]); a missing folder is created.
-pub fn check_out_file(flag: &str, path: &Path) -> Result<()> {
+/// ([`osrl_files::check_output`]) and is none of the run's `inputs`; a missing folder is
+/// created.
+pub fn check_out_file(flag: &str, path: &Path, inputs: &[Option<&Path>]) -> Result<()> {
     if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
         if std::fs::symlink_metadata(dir).is_err() {
             std::fs::create_dir_all(dir)
                 .with_context(|| format!("{flag} {}: creating its folder", path.display()))?;
         }
     }
-    osrl_files::check_output(path).context(flag.to_string())
+    osrl_files::check_output(path).context(flag.to_string())?;
+    let inputs: Vec<&Path> = inputs.iter().flatten().copied().collect();
+    osrl_files::check_not_input(path, &inputs).context(flag.to_string())
 }
 
 /// Checks, before any work, that `flag`'s folder `dir` can hold `files`
-/// ([`osrl_files::check_output_dir`]; a missing folder is created).
-pub fn check_out_dir(flag: &str, dir: &Path, files: &[&str]) -> Result<()> {
-    osrl_files::check_output_dir(dir, files).context(flag.to_string())
+/// ([`osrl_files::check_output_dir`]; a missing folder is created) and that none of them is one
+/// of the run's `inputs`.
+pub fn check_out_dir(
+    flag: &str,
+    dir: &Path,
+    files: &[&str],
+    inputs: &[Option<&Path>],
+) -> Result<()> {
+    osrl_files::check_output_dir(dir, files).context(flag.to_string())?;
+    let inputs: Vec<&Path> = inputs.iter().flatten().copied().collect();
+    files.iter().try_for_each(|f| {
+        osrl_files::check_not_input(&dir.join(f), &inputs).context(flag.to_string())
+    })
+}
+
+/// The extensions of the files a report page is made of (`osrl reproduce`, `osrl report`).
+pub const PAGE_EXTENSIONS: [&str; 6] = ["html", "json", "csv", "svg", "png", "osrl"];
+
+/// The path of a `--robot` that names a file (not a built-in robot), as an input to protect.
+pub fn robot_file(robot: Option<&str>) -> Option<&Path> {
+    robot.map(Path::new).filter(|p| p.is_file())
 }
 
 /// Writes `bytes`, the result of a long run, to `path`, or else next to it under a fresh name

@@ -123,6 +123,11 @@ fn duration(what: &str, v: f64, zero_ok: bool) -> Result<()> {
         Ok(())
     } else {
         let lo = if zero_ok { "≥ 0" } else { "> 0" };
+        let v = if v.abs() >= 1e6 {
+            format!("{v:e}")
+        } else {
+            v.to_string()
+        };
         Err(ControlError::InvalidTrajectory(format!(
             "{what} must be {lo} and at most {MAX_PATH_SECONDS} s, got {v}"
         )))

@@ -43,6 +43,11 @@ pub enum FileError {
     /// The folder an output file would go in does not exist.
     #[error("{path}: the folder does not exist")]
     MissingFolder { path: String },
+    /// An output path that is one of the run's own inputs.
+    #[error(
+        "{path}: is also the input {input}; give the output another name (it would be replaced)"
+    )]
+    IsInput { path: String, input: String },
     /// A file larger than its limit.
     #[error("{path}: {size} bytes, at most {limit} are accepted")]
     TooLarge { path: String, size: u64, limit: u64 },
@@ -122,6 +127,102 @@ pub fn check_output(path: &Path) -> Result<()> {
         });
     }
     probe_folder(&folder_of(path))
+}
+
+/// Most entries [`check_output_tree`] looks at.
+pub const MAX_TREE_ENTRIES: usize = 100_000;
+
+/// Checks, before a long run writes many files under `dir`, that nothing already there is in
+/// the way: no FIFO, device, socket or symbolic link anywhere below `dir`, and no folder named
+/// like one of the files it writes (a name ending in `.EXT` for EXT in `extensions`). A
+/// missing `dir` passes.
+///
+/// # Errors
+/// [`FileError::NotRegular`] naming the first such path; [`FileError::TooLarge`] (counting
+/// entries) beyond [`MAX_TREE_ENTRIES`]; [`FileError::Io`] if a folder cannot be listed.
+pub fn check_output_tree(dir: &Path, extensions: &[&str]) -> Result<()> {
+    let mut stack = vec![dir.to_path_buf()];
+    let mut seen = 0u64;
+    while let Some(d) = stack.pop() {
+        let Ok(entries) = std::fs::read_dir(&d) else {
+            if d == dir && std::fs::symlink_metadata(dir).is_err() {
+                return Ok(());
+            }
+            return Err(io(&d, "list the folder")(std::io::Error::other(
+                "unreadable",
+            )));
+        };
+        for e in entries {
+            let path = e.map_err(io(&d, "list the folder"))?.path();
+            seen += 1;
+            if seen > MAX_TREE_ENTRIES as u64 {
+                return Err(FileError::TooLarge {
+                    path: dir.display().to_string(),
+                    size: seen,
+                    limit: MAX_TREE_ENTRIES as u64,
+                });
+            }
+            let meta = std::fs::symlink_metadata(&path).map_err(io(&path, "inspect"))?;
+            let named_like_output = path
+                .extension()
+                .and_then(|x| x.to_str())
+                .is_some_and(|x| extensions.contains(&x));
+            if meta.is_dir() && named_like_output {
+                return Err(FileError::NotRegular {
+                    path: path.display().to_string(),
+                    kind: kind(&meta),
+                    why: "the run writes a file of this name (not replaced)",
+                });
+            } else if meta.is_dir() {
+                stack.push(path);
+            } else if !meta.is_file() {
+                return Err(FileError::NotRegular {
+                    path: path.display().to_string(),
+                    kind: kind(&meta),
+                    why: "in the output folder, where the run may write (not replaced)",
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Checks that the output `out` is not the same file as any of `inputs` (same device and
+/// inode, so other names of it — `./a`, a hard link, a symbolic link — count too). Paths that
+/// do not exist yet cannot be inputs.
+///
+/// # Errors
+/// [`FileError::IsInput`] naming the output and the input.
+pub fn check_not_input(out: &Path, inputs: &[&Path]) -> Result<()> {
+    if std::fs::metadata(out).is_err() {
+        return Ok(());
+    }
+    match inputs.iter().find(|input| same_file(out, input)) {
+        Some(input) => Err(FileError::IsInput {
+            path: out.display().to_string(),
+            input: input.display().to_string(),
+        }),
+        None => Ok(()),
+    }
+}
+
+/// Whether the existing paths `a` and `b` name the same file.
+#[cfg(unix)]
+fn same_file(a: &Path, b: &Path) -> bool {
+    use std::os::unix::fs::MetadataExt;
+    match (std::fs::metadata(a), std::fs::metadata(b)) {
+        (Ok(a), Ok(b)) => (a.dev(), a.ino()) == (b.dev(), b.ino()),
+        _ => false,
+    }
+}
+
+/// Whether the existing paths `a` and `b` name the same file.
+#[cfg(not(unix))]
+fn same_file(a: &Path, b: &Path) -> bool {
+    match (std::fs::canonicalize(a), std::fs::canonicalize(b)) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => false,
+    }
 }
 
 /// Checks that `dir` can hold output files: missing (it is created, with its parents) or a
@@ -230,4 +331,33 @@ pub fn read_text_limited(path: &Path, limit: u64) -> Result<String> {
             source: std::io::Error::new(std::io::ErrorKind::InvalidData, "not UTF-8"),
         }
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// An output that is an input under any of its names is refused; others pass.
+    #[test]
+    fn an_output_that_is_an_input_is_refused() {
+        let dir = std::env::temp_dir().join(format!("osrl-files-input-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let (a, b) = (dir.join("a.csv"), dir.join("b.csv"));
+        std::fs::write(&a, "1,2\n").unwrap();
+        std::fs::write(&b, "1,2\n").unwrap();
+        let other_name = dir.join(".").join("a.csv");
+        let e = check_not_input(&other_name, &[&b, &a])
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("is also the input") && e.contains("a.csv"),
+            "{e}"
+        );
+        let link = dir.join("link.csv");
+        std::fs::hard_link(&a, &link).unwrap();
+        assert!(check_not_input(&link, &[&a]).is_err());
+        assert!(check_not_input(&b, &[&a]).is_ok());
+        assert!(check_not_input(&dir.join("new.osrl"), &[&a]).is_ok());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 }

@@ -84,7 +84,7 @@ pub fn run(a: Args) -> Result<()> {
     refuse_saved_learner_sections(&sections, a.config.as_deref())?;
     cfg.validate()?;
     let saved = SavedModel::load(&a.model)?;
-    crate::util::check_out_file("--out", &a.out)?;
+    crate::util::check_out_file("--out", &a.out, &[Some(&a.model), a.config.as_deref()])?;
     let minutes = a.minutes.unwrap_or(10.0);
     if !(minutes > 0.0 && minutes <= crate::config::MAX_TRAIN_MINUTES) {
         bail!(

@@ -80,7 +80,8 @@ fn setup_trained_on_family(saved: &SavedModel) -> bool {
 pub fn run(a: Args) -> Result<()> {
     let saved = SavedModel::load(&a.model)?;
     if let Some(dir) = &a.out {
-        crate::util::check_out_dir("--out", dir, &osrl_report::runs::EVAL_FILES)?;
+        let inputs = [Some(a.model.as_path()), a.config.as_deref()];
+        crate::util::check_out_dir("--out", dir, &osrl_report::runs::EVAL_FILES, &inputs)?;
     }
     let mut setup = Setup::from_saved(&saved)?;
     // Where training went: the trained path's or family's region.

@@ -33,7 +33,8 @@ pub fn run(a: Args) -> Result<()> {
     let page =
         Page::load(&dir).with_context(|| format!("reading the report folder {}", dir.display()))?;
     let out = a.out.unwrap_or(dir);
-    crate::util::check_out_dir("--out", &out, &["index.html"])?;
+    crate::util::check_out_dir("--out", &out, &["index.html"], &[Some(&a.from)])?;
+    osrl_files::check_output_tree(&out, &crate::util::PAGE_EXTENSIONS).context("--out")?;
     render(&out, &page)?;
     println!("wrote {}", out.join("index.html").display());
     Ok(())

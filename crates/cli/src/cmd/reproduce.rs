@@ -5,7 +5,7 @@
 //! or `--quick`); training runs go in parallel on all cores, one progress bar each.
 
 use crate::progress::Bars;
-use anyhow::{bail, Result};
+use anyhow::{bail, Context, Result};
 use osrl_experiments::Sizes;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -31,12 +31,17 @@ pub fn run(a: Args) -> Result<()> {
         "--out",
         out,
         &["index.html", "results.json", "figures.json"],
+        &[],
     )?;
     crate::util::check_out_dir(
         "--out",
         &out.join("models"),
         &["planar3.osrl", "sarcos7.osrl"],
+        &[],
     )?;
+    // The page's figures and tables go in folders per experiment: nothing already there may
+    // be a file that cannot be replaced.
+    osrl_files::check_output_tree(out, &crate::util::PAGE_EXTENSIONS).context("--out")?;
     let mut sizes = if a.quick {
         Sizes::quick()
     } else {

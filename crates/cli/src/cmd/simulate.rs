@@ -126,7 +126,9 @@ pub fn run(a: Args) -> Result<()> {
     let loaded = model_path.as_deref().map(SavedModel::load).transpose()?;
     let cfg = effective_config(&a, loaded.as_ref())?;
     if let Some(dir) = &a.out {
-        crate::util::check_out_dir("--out", dir, &osrl_report::runs::SIMULATE_FILES)?;
+        let robot = crate::util::robot_file(a.robot.as_deref());
+        let inputs = [a.config.as_deref(), model_path.as_deref(), robot];
+        crate::util::check_out_dir("--out", dir, &osrl_report::runs::SIMULATE_FILES, &inputs)?;
     }
     // A learned controller runs on the robot it was trained on, saved with it (its profile
     // included), not on the file read again.

@@ -43,7 +43,7 @@ fn load(a: &Args) -> Result<ToyConfig> {
 /// Runs the sweep (in parallel over cases × seeds), prints, plots, writes JSON.
 pub fn run(a: Args) -> Result<()> {
     let cfg = load(&a)?;
-    crate::util::check_out_dir("--out", &a.out, &["toy.json"])?;
+    crate::util::check_out_dir("--out", &a.out, &["toy.json"], &[a.config.as_deref()])?;
     let report = toy::sweep(&cfg)?;
     print_table(&cfg, &report);
     let mut written = figures::iterations(&cfg, &report, &a.out)?;

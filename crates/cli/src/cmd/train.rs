@@ -115,7 +115,8 @@ fn config(a: &Args) -> Result<Config> {
 /// Trains, saves, reports.
 pub fn run(a: Args) -> Result<()> {
     let cfg = config(&a)?;
-    crate::util::check_out_file("--out", &a.out)?;
+    let robot = crate::util::robot_file(a.robot.as_deref());
+    crate::util::check_out_file("--out", &a.out, &[a.config.as_deref(), robot])?;
     let setup = Setup::profiled(cfg.robot.name(), &cfg.robot.0, cfg.trajectory.clone())?
         .with_sim(cfg.sim.clone())?
         .with_learner(cfg.learner.clone())

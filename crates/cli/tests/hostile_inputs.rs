@@ -1,0 +1,142 @@
+//! Inputs found to crash, hang or destroy data (a review of 2026-12-07), each refused at once
+//! with one line naming what was wrong, and nothing lost: an output that is one of the run's
+//! inputs, a special file deep in `reproduce`'s output folder, XML nested 50,000 deep, and
+//! configuration values whose work would never end or not fit in memory.
+
+mod common;
+use common::osrl;
+use std::path::PathBuf;
+
+fn scratch(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("osrl-inputs-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// `osrl args…` fails at once (nothing on stdout) with one line containing `what`.
+fn refused(args: &[&str], what: &str) {
+    let (ok, out, err) = osrl(args);
+    assert!(!ok, "{args:?}: {out}");
+    assert!(out.is_empty(), "{args:?} did work first: {out}");
+    assert_eq!(err.trim().lines().count(), 1, "{err}");
+    assert!(err.contains(what), "{args:?}: {err}");
+}
+
+#[test]
+fn an_output_that_is_an_input_is_refused_and_the_input_kept() {
+    let d = scratch("same");
+    let s = |p: &PathBuf| p.to_str().unwrap().to_string();
+    let config = d.join("run.toml");
+    let text = "# mine\n[train]\nminutes = 0.05\n";
+    std::fs::write(&config, text).unwrap();
+    let csv = d.join("data.csv");
+    let rows: String = (0..50).map(|i| format!("{},{}\n", i, 2 * i)).collect();
+    let data = format!("x,y\n{rows}");
+    std::fs::write(&csv, &data).unwrap();
+    let also = format!("{}/./run.toml", s(&d));
+    refused(
+        &["train", "--config", &s(&config), "--out", &also],
+        "is also the input",
+    );
+    let fit = [
+        "lwpr",
+        "fit",
+        "--train",
+        &s(&csv),
+        "--test",
+        &s(&csv),
+        "--inputs",
+        "1",
+    ];
+    refused(
+        &[&fit[..], &["--save", &s(&csv)]].concat(),
+        "is also the input",
+    );
+    // `simulate --out DIR` writes DIR/config.toml: not over the config it read.
+    let sim = d.join("sim");
+    std::fs::create_dir(&sim).unwrap();
+    let own = sim.join("config.toml");
+    std::fs::write(&own, text).unwrap();
+    refused(
+        &["simulate", "--config", &s(&own), "--out", &s(&sim)],
+        "is also the input",
+    );
+    assert_eq!(std::fs::read_to_string(&config).unwrap(), text);
+    assert_eq!(std::fs::read_to_string(&own).unwrap(), text);
+    assert_eq!(std::fs::read_to_string(&csv).unwrap(), data);
+}
+
+#[test]
+fn a_special_file_deep_in_the_report_folder_is_refused_before_the_run() {
+    let d = scratch("tree");
+    let e9 = d.join("E9");
+    std::fs::create_dir(&e9).unwrap();
+    let fifo = e9.join("planar3_held_out.png");
+    let ok = std::process::Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .unwrap();
+    assert!(ok.success());
+    let out = d.to_str().unwrap();
+    refused(
+        &["reproduce", "--quick", "--seeds", "1", "--out", out],
+        "FIFO",
+    );
+    std::fs::remove_file(&fifo).unwrap();
+    std::fs::create_dir(&fifo).unwrap();
+    refused(
+        &["reproduce", "--quick", "--seeds", "1", "--out", out],
+        "planar3_held_out.png",
+    );
+}
+
+#[test]
+fn deeply_nested_xml_is_refused_without_overflowing_the_stack() {
+    let d = scratch("deep");
+    let urdf = d.join("deep.urdf");
+    let n = 50_000;
+    let text = format!(
+        "<robot name=\"x\">{}{}</robot>",
+        "<a>".repeat(n),
+        "</a>".repeat(n)
+    );
+    std::fs::write(&urdf, text).unwrap();
+    refused(
+        &["robot", "--robot", urdf.to_str().unwrap()],
+        "nested more than 256",
+    );
+}
+
+#[test]
+fn values_that_crashed_or_never_finished_are_refused_by_name() {
+    let d = scratch("values");
+    let cases = [
+        ("[learner.nominal]\nkp = [-1.0, -1.0, -1.0]\n", "nominal.kp"),
+        (
+            "[learner.guards]\nwarmup_samples = 1000000000000\n",
+            "warmup_samples",
+        ),
+        ("[train]\nepisode_seconds = 1e9\n", "episode_seconds"),
+        ("[train.curriculum]\nstop_every = 1e-6\n", "stop_every"),
+        ("[trajectory]\nramp = 1e300\n", "ramp"),
+        (
+            "[trajectory]\nkind = \"family\"\n[trajectory.family]\napproach_speed = 1e-300\n",
+            "approach_speed",
+        ),
+        (
+            "[learner.partition.lwpr]\nnorm_in = nan\n",
+            "partition.lwpr.norm_in",
+        ),
+    ];
+    for (i, (text, what)) in cases.iter().enumerate() {
+        let f = d.join(format!("c{i}.toml"));
+        std::fs::write(&f, text).unwrap();
+        let out = d.join("m.osrl");
+        let (f, out) = (f.to_str().unwrap(), out.to_str().unwrap());
+        refused(
+            &["train", "--minutes", "0.05", "--config", f, "--out", out],
+            what,
+        );
+    }
+}
