@@ -149,13 +149,20 @@ impl SimConfig {
             )));
         }
         let n = &self.sensor_noise;
-        if [n.q, n.qd, n.x, n.xd, n.xdd, self.actuator_noise]
-            .iter()
-            .any(|s| !(*s >= 0.0 && s.is_finite()))
-        {
-            return bad("noise standard deviations must be finite and ≥ 0");
+        let noises = [
+            ("sensor_noise.q", n.q),
+            ("sensor_noise.qd", n.qd),
+            ("sensor_noise.x", n.x),
+            ("sensor_noise.xd", n.xd),
+            ("sensor_noise.xdd", n.xdd),
+            ("actuator_noise", self.actuator_noise),
+        ];
+        match noises.iter().find(|(_, s)| !(*s >= 0.0 && s.is_finite())) {
+            Some((what, s)) => Err(DynamicsError::InvalidConfig(format!(
+                "{what} = {s}: a noise standard deviation must be finite and ≥ 0"
+            ))),
+            None => Ok(()),
         }
-        Ok(())
     }
 }
 

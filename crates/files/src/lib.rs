@@ -40,6 +40,9 @@ pub enum FileError {
         kind: &'static str,
         why: &'static str,
     },
+    /// The path exists and is not a folder, where a folder is needed.
+    #[error("{path}: is a {kind}, not a folder: a folder is needed here")]
+    NotFolder { path: String, kind: &'static str },
     /// The folder an output file would go in does not exist.
     #[error("{path}: the folder does not exist")]
     MissingFolder { path: String },
@@ -234,10 +237,9 @@ fn same_file(a: &Path, b: &Path) -> bool {
 pub fn check_output_dir(dir: &Path, files: &[&str]) -> Result<()> {
     if let Ok(meta) = std::fs::metadata(dir) {
         if !meta.is_dir() {
-            return Err(FileError::NotRegular {
+            return Err(FileError::NotFolder {
                 path: dir.display().to_string(),
                 kind: kind(&std::fs::symlink_metadata(dir).unwrap_or(meta)),
-                why: "a folder is needed here",
             });
         }
     }
@@ -259,10 +261,9 @@ fn probe_folder(dir: &Path) -> Result<()> {
     match std::fs::metadata(dir) {
         Ok(m) if m.is_dir() => {}
         Ok(m) => {
-            return Err(FileError::NotRegular {
+            return Err(FileError::NotFolder {
                 path: dir.display().to_string(),
                 kind: kind(&m),
-                why: "a folder is needed here",
             })
         }
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => {

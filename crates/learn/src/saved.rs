@@ -341,7 +341,13 @@ impl SavedModel {
     /// As [`SavedModel::from_bytes`], the message starting with the path.
     pub fn load(path: &Path) -> Result<Self> {
         let bytes = osrl_files::read_limited(path, MAX_MODEL_BYTES)?;
-        Self::from_bytes(&bytes).map_err(|e| LearnError::Load(format!("{}: {e}", path.display())))
+        Self::from_bytes(&bytes).map_err(|e| {
+            let why = match e {
+                LearnError::Load(why) => why,
+                e => e.to_string(),
+            };
+            LearnError::Load(format!("{}: {why}", path.display()))
+        })
     }
 }
 

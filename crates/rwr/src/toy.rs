@@ -116,8 +116,14 @@ impl ToyConfig {
         if !self.theta_init.iter().all(|x| x.is_finite()) {
             return bad("theta_init must be finite".into());
         }
-        if self.samples_per_iter < 3 || self.max_iters == 0 || self.seeds == 0 {
-            return bad("samples_per_iter >= 3, max_iters >= 1 and seeds >= 1 required".into());
+        for (what, v, least) in [
+            ("samples_per_iter", self.samples_per_iter as u64, 3),
+            ("max_iters", self.max_iters as u64, 1),
+            ("seeds", self.seeds, 1),
+        ] {
+            if v < least {
+                return bad(format!("{what} = {v}: at least {least} required"));
+            }
         }
         if self.tau0s.is_empty() || !self.tau0s.iter().all(|&t| pos(t)) {
             return bad(format!(

@@ -131,10 +131,10 @@ pub fn run(a: Args) -> Result<()> {
             if !(at >= 0.0 && at <= minutes)
                 || a.revert_at.is_some_and(|r| !(r > at && r <= minutes))
             {
+                let revert = a.revert_at.map_or("unset".into(), |r| r.to_string());
                 bail!(
-                    "--change-at {at} / --revert-at {:?}: need 0 ≤ change-at < revert-at ≤ the \
-                     run's {minutes} minutes",
-                    a.revert_at
+                    "--change-at {at} / --revert-at {revert}: need 0 ≤ change-at < revert-at ≤ \
+                     the run's {minutes} minutes"
                 );
             }
             osrl_experiments::adapt::checked_change(&setup, change)?;

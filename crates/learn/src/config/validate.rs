@@ -247,7 +247,8 @@ impl LearnerConfig {
             g.torque_rate_limit.is_none_or(|r| r > 0.0 && r.is_finite()),
             || {
                 format!(
-                    "guards.torque_rate_limit {:?} must be finite and > 0 (N·m/s), or unset",
+                    "guards.torque_rate_limit {:?} must be finite and > 0 (N·m/s; a huge value for no \
+                 limit), or unset",
                     g.torque_rate_limit
                 )
             },

@@ -373,7 +373,7 @@ mod tests {
     /// trained field's centre, in `steps` equal increments (no exploration, no rate limit).
     fn largest_change_into_the_field(steps: usize) -> (f64, Vec<CommandSource>) {
         let mut cfg = fixture::config();
-        cfg.guards.torque_rate_limit = Some(f64::INFINITY);
+        cfg.guards.torque_rate_limit = Some(f64::MAX);
         cfg.controllers.neighbour_cutoff = 1e-40;
         let (mut learner, c) = one_trained_field(cfg);
         let (q0, vd) = (&c[..3], c[3..].to_vec());
@@ -475,7 +475,7 @@ mod tests {
     #[test]
     fn an_m_steps_change_is_spread_over_step_spread_commands() {
         let mut cfg = fixture::config();
-        cfg.guards.torque_rate_limit = Some(f64::INFINITY);
+        cfg.guards.torque_rate_limit = Some(f64::MAX);
         cfg.controllers.step_spread = 25;
         let (mut learner, c) = one_trained_field(cfg);
         let (q, vd, xdd) = (c[..3].to_vec(), c[3..].to_vec(), [0.3, -0.2]);

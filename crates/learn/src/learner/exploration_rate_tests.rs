@@ -11,7 +11,7 @@ use rand::SeedableRng;
 /// mean.
 fn steps_at_a_fixed_state(max_rate: Option<f64>) -> (f64, f64) {
     let mut cfg = super::fixture::config();
-    cfg.guards.torque_rate_limit = Some(f64::INFINITY);
+    cfg.guards.torque_rate_limit = Some(f64::MAX);
     cfg.exploration.correlation_time = 0.0; // white noise: the largest steps
     cfg.exploration.max_rate = max_rate;
     let (mut learner, c) = one_trained_field(cfg);
