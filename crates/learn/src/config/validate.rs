@@ -282,11 +282,14 @@ impl LearnerConfig {
 mod tests {
     use super::*;
 
+    /// One change to a configuration.
+    type Edit = Box<dyn Fn(&mut LearnerConfig)>;
+
     /// Each edit alone makes the default configuration invalid, with the field named.
     #[test]
     fn values_that_crashed_or_could_not_be_saved_are_refused_by_name() {
         let n = 3;
-        let edits: Vec<(&str, Box<dyn Fn(&mut LearnerConfig)>)> = vec![
+        let edits: Vec<(&str, Edit)> = vec![
             ("nominal.kp", Box::new(|c| c.nominal.kp = vec![-1.0; 3])),
             ("nominal.kd", Box::new(|c| c.nominal.kd[1] = -0.5)),
             (
