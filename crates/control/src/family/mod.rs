@@ -40,9 +40,11 @@ pub struct FamilyConfig {
     /// half-extents (the circle: of the smaller one), drawn uniformly in this range. Default
     /// [0.3, 0.8]: from a third of the region to nearly all of it.
     pub size: [f64; 2],
-    /// Period of a figure-8 or circle (s), drawn uniformly. Default [3, 6] (the base: 4).
+    /// Period of a figure-8 or circle (s), drawn uniformly, within [`FAMILY_SECONDS`]. Default
+    /// [3, 6] (the base: 4).
     pub period: [f64; 2],
-    /// Duration of each minimum-jerk move (s), drawn uniformly. Default [0.8, 1.6].
+    /// Duration of each minimum-jerk move (s), drawn uniformly, within [`FAMILY_SECONDS`].
+    /// Default [0.8, 1.6].
     pub move_time: [f64; 2],
     /// Points of a minimum-jerk path, drawn uniformly in this range (inclusive). Default [2, 4].
     pub points: [usize; 2],
@@ -50,7 +52,8 @@ pub struct FamilyConfig {
     /// (m/s²). Default 1: the family is as fast as the task the controller is known to learn.
     pub max_acceleration_ratio: f64,
     /// Peak speed of the minimum-jerk approach from home to a path's start (m/s; at least 1 s
-    /// long). Default 0.15: slower than the base figure-8 (peak 0.39 m/s on planar3).
+    /// long; within [`APPROACH_SPEED`]). Default 0.15: slower than the base figure-8 (peak 0.39
+    /// m/s on planar3).
     pub approach_speed: f64,
     /// Eq. 7 with the true model, run along the approached path from home, may need at most
     /// this share of each joint's torque limit. Default 0.8: headroom for exploration and for

@@ -332,7 +332,8 @@ pub struct GuardConfig {
     /// Measurements with `|q̇|` above this (rad/s) are rejected as absurd (counted). Default 100.
     pub max_abs_velocity: f64,
     /// Transitions collected before the models are created; their standard deviations set the
-    /// models' torque and acceleration scales (≥ 10). Default 1000 (2 s at 500 Hz).
+    /// models' torque and acceleration scales (10 to 1,000,000: each is kept until then).
+    /// Default 1000 (2 s at 500 Hz).
     pub warmup_samples: usize,
 }
 

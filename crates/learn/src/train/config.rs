@@ -71,7 +71,8 @@ pub struct TrainConfig {
     /// Task-space gains of the reference dynamics (eq. 2).
     pub gains: TaskGains,
     /// On-policy episodes run the path for this long (s), then stop and hold (see
-    /// `curriculum`), unless the error grows too large. Default 40.
+    /// `curriculum`), unless the error grows too large; at most [`MAX_EPISODE_SECONDS`].
+    /// Default 40.
     pub episode_seconds: f64,
     /// An episode stops when the task error exceeds this (m); the arm returns home. Default 0.05.
     pub reset_error: f64,

@@ -24,11 +24,14 @@ pub struct CurriculumConfig {
     /// advances the curriculum by one stage; an aborted one goes back one. Default 0.002.
     pub advance_error: f64,
     /// Mean time between stops of the path clock (s of episode, each interval drawn uniformly
-    /// in [0.5, 1.5] times it); 0: stop only at the end. Default 8.
+    /// in [0.5, 1.5] times it); 0: stop only at the end, else at least [`MIN_STOP_EVERY`].
+    /// Default 8.
     pub stop_every: f64,
-    /// Time to decelerate the path to rest and to accelerate it again (s). Default 0.5.
+    /// Time to decelerate the path to rest and to accelerate it again (s; at most
+    /// [`MAX_STOP_SECONDS`]). Default 0.5.
     pub stop_seconds: f64,
-    /// Time the target is held still at a stop (s). Default 1: the arm comes to rest.
+    /// Time the target is held still at a stop (s; at most [`MAX_STOP_SECONDS`]). Default 1:
+    /// the arm comes to rest.
     pub hold_seconds: f64,
     /// When the task error exceeds this (m), the episode ends at once and the PD return home
     /// takes over (counted as braked; the curriculum goes back a stage), before the error can
