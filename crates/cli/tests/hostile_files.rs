@@ -4,14 +4,11 @@
 //! refused naming the field; a training run rejecting its samples warns and says so in JSON.
 
 mod common;
-use common::{last_json, osrl};
+use common::{last_json, osrl, refused_before_work};
 use std::path::{Path, PathBuf};
 
 fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("osrl-hostile-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    common::scratch(&format!("hostile-{name}"))
 }
 
 fn mkfifo(p: &Path) {
@@ -25,15 +22,6 @@ fn mkfifo(p: &Path) {
 fn is_fifo(p: &Path) -> bool {
     use std::os::unix::fs::FileTypeExt;
     std::fs::symlink_metadata(p).unwrap().file_type().is_fifo()
-}
-
-/// `osrl args…` fails at once (nothing on stdout: no work done) with one line naming `what`.
-fn refused_before_work(args: &[&str], what: &str) {
-    let (ok, out, err) = osrl(args);
-    assert!(!ok, "{args:?}: {out}");
-    assert!(out.is_empty(), "{args:?} did work first: {out}");
-    assert_eq!(err.trim().lines().count(), 1, "{err}");
-    assert!(err.contains(what), "{args:?}: {err}");
 }
 
 #[test]

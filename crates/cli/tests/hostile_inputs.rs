@@ -4,23 +4,11 @@
 //! configuration values whose work would never end or not fit in memory.
 
 mod common;
-use common::osrl;
+use common::refused_before_work as refused;
 use std::path::PathBuf;
 
 fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("osrl-inputs-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-/// `osrl args…` fails at once (nothing on stdout) with one line containing `what`.
-fn refused(args: &[&str], what: &str) {
-    let (ok, out, err) = osrl(args);
-    assert!(!ok, "{args:?}: {out}");
-    assert!(out.is_empty(), "{args:?} did work first: {out}");
-    assert_eq!(err.trim().lines().count(), 1, "{err}");
-    assert!(err.contains(what), "{args:?}: {err}");
+    common::scratch(&format!("inputs-{name}"))
 }
 
 #[test]

@@ -45,3 +45,23 @@ pub fn untrained_model() -> osrl_learn::SavedModel {
     };
     osrl_learn::SavedModel::new(info, learner).unwrap()
 }
+
+/// A fresh scratch folder for one test (`tag`: the test's name; the process id keeps runs
+/// apart).
+#[allow(dead_code)]
+pub fn scratch(tag: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("osrl-{tag}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// `osrl args…` fails at once (nothing on stdout: no work done) with one line naming `what`.
+#[allow(dead_code)]
+pub fn refused_before_work(args: &[&str], what: &str) {
+    let (ok, out, err) = osrl(args);
+    assert!(!ok, "{args:?}: {out}");
+    assert!(out.is_empty(), "{args:?} did work first: {out}");
+    assert_eq!(err.trim().lines().count(), 1, "{err}");
+    assert!(err.contains(what), "{args:?}: {err}");
+}
