@@ -147,13 +147,10 @@ pub fn check_output_tree(dir: &Path, extensions: &[&str]) -> Result<()> {
     let mut stack = vec![dir.to_path_buf()];
     let mut seen = 0u64;
     while let Some(d) = stack.pop() {
-        let Ok(entries) = std::fs::read_dir(&d) else {
-            if d == dir && std::fs::symlink_metadata(dir).is_err() {
-                return Ok(());
-            }
-            return Err(io(&d, "list the folder")(std::io::Error::other(
-                "unreadable",
-            )));
+        let entries = match std::fs::read_dir(&d) {
+            Ok(entries) => entries,
+            Err(e) if d == dir && e.kind() == std::io::ErrorKind::NotFound => return Ok(()),
+            Err(e) => return Err(io(&d, "list the folder")(e)),
         };
         for e in entries {
             let path = e.map_err(io(&d, "list the folder"))?.path();
@@ -339,6 +336,7 @@ mod tests {
     use super::*;
 
     /// An output that is an input under any of its names is refused; others pass.
+    #[cfg(unix)]
     #[test]
     fn an_output_that_is_an_input_is_refused() {
         let dir = std::env::temp_dir().join(format!("osrl-files-input-{}", std::process::id()));
@@ -359,6 +357,28 @@ mod tests {
         assert!(check_not_input(&link, &[&a]).is_err());
         assert!(check_not_input(&b, &[&a]).is_ok());
         assert!(check_not_input(&dir.join("new.osrl"), &[&a]).is_ok());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// A missing or ordinary output tree passes; a link or a folder named like an output, at
+    /// any depth, is refused with its path.
+    #[cfg(unix)]
+    #[test]
+    fn an_output_tree_with_a_link_or_a_misnamed_folder_is_refused() {
+        let dir = std::env::temp_dir().join(format!("osrl-files-tree-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        assert!(check_output_tree(&dir, &["png"]).is_ok());
+        let deep = dir.join("E1").join("a");
+        std::fs::create_dir_all(&deep).unwrap();
+        std::fs::write(deep.join("x.png"), "old").unwrap();
+        assert!(check_output_tree(&dir, &["png"]).is_ok());
+        std::os::unix::fs::symlink(deep.join("x.png"), deep.join("y.png")).unwrap();
+        let e = check_output_tree(&dir, &["png"]).unwrap_err().to_string();
+        assert!(e.contains("y.png") && e.contains("symbolic link"), "{e}");
+        std::fs::remove_file(deep.join("y.png")).unwrap();
+        std::fs::create_dir(deep.join("z.png")).unwrap();
+        let e = check_output_tree(&dir, &["png"]).unwrap_err().to_string();
+        assert!(e.contains("z.png"), "{e}");
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }
