@@ -79,8 +79,7 @@ pub fn check_out_file(flag: &str, path: &Path, inputs: &[Option<&Path>]) -> Resu
         }
     }
     osrl_files::check_output(path).context(flag.to_string())?;
-    let inputs: Vec<&Path> = inputs.iter().flatten().copied().collect();
-    osrl_files::check_not_input(path, &inputs).context(flag.to_string())
+    osrl_files::check_not_input(path, inputs).context(flag.to_string())
 }
 
 /// Checks, before any work, that `flag`'s folder `dir` can hold `files`
@@ -93,9 +92,8 @@ pub fn check_out_dir(
     inputs: &[Option<&Path>],
 ) -> Result<()> {
     osrl_files::check_output_dir(dir, files).context(flag.to_string())?;
-    let inputs: Vec<&Path> = inputs.iter().flatten().copied().collect();
     files.iter().try_for_each(|f| {
-        osrl_files::check_not_input(&dir.join(f), &inputs).context(flag.to_string())
+        osrl_files::check_not_input(&dir.join(f), inputs).context(flag.to_string())
     })
 }
 

@@ -189,15 +189,15 @@ pub fn check_output_tree(dir: &Path, extensions: &[&str]) -> Result<()> {
 
 /// Checks that the output `out` is not the same file as any of `inputs` (same device and
 /// inode, so other names of it — `./a`, a hard link, a symbolic link — count too). Paths that
-/// do not exist yet cannot be inputs.
+/// do not exist yet cannot be inputs; `None` stands for an input the run does not have.
 ///
 /// # Errors
 /// [`FileError::IsInput`] naming the output and the input.
-pub fn check_not_input(out: &Path, inputs: &[&Path]) -> Result<()> {
+pub fn check_not_input(out: &Path, inputs: &[Option<&Path>]) -> Result<()> {
     if std::fs::metadata(out).is_err() {
         return Ok(());
     }
-    match inputs.iter().find(|input| same_file(out, input)) {
+    match inputs.iter().flatten().find(|input| same_file(out, input)) {
         Some(input) => Err(FileError::IsInput {
             path: out.display().to_string(),
             input: input.display().to_string(),
@@ -345,7 +345,7 @@ mod tests {
         std::fs::write(&a, "1,2\n").unwrap();
         std::fs::write(&b, "1,2\n").unwrap();
         let other_name = dir.join(".").join("a.csv");
-        let e = check_not_input(&other_name, &[&b, &a])
+        let e = check_not_input(&other_name, &[Some(&b), None, Some(&a)])
             .unwrap_err()
             .to_string();
         assert!(
@@ -354,9 +354,9 @@ mod tests {
         );
         let link = dir.join("link.csv");
         std::fs::hard_link(&a, &link).unwrap();
-        assert!(check_not_input(&link, &[&a]).is_err());
-        assert!(check_not_input(&b, &[&a]).is_ok());
-        assert!(check_not_input(&dir.join("new.osrl"), &[&a]).is_ok());
+        assert!(check_not_input(&link, &[Some(&a)]).is_err());
+        assert!(check_not_input(&b, &[Some(&a)]).is_ok());
+        assert!(check_not_input(&dir.join("new.osrl"), &[Some(&a)]).is_ok());
         std::fs::remove_dir_all(&dir).unwrap();
     }
 

@@ -37,17 +37,33 @@ fn dims(name: &str, d: &Option<Vec<usize>>, n_in: usize) -> Result<Vec<usize>, L
     Ok(v)
 }
 
+impl Norm {
+    /// Checks every divisor given (a number or a list) against [`NORM_RANGE`], whatever the
+    /// number of dimensions; `"std"` passes (it is resolved from the data later).
+    ///
+    /// # Errors
+    /// [`LwprError::Config`] naming `name` (and the list index) and the value.
+    pub fn check_values(&self, name: &str) -> Result<(), LwprError> {
+        let (lo, hi) = NORM_RANGE;
+        match self {
+            Norm::Scalar(s) => range(name, *s, lo, hi, false, false),
+            Norm::List(l) => l
+                .iter()
+                .enumerate()
+                .try_for_each(|(i, &a)| range(&format!("{name}[{i}]"), a, lo, hi, false, false)),
+            Norm::Keyword(_) => Ok(()),
+        }
+    }
+}
+
 fn norm(name: &str, n: &Norm, len: usize) -> Result<Vec<f64>, LwprError> {
-    let (lo, hi) = NORM_RANGE;
     match n {
         Norm::Scalar(s) => {
-            range(name, *s, lo, hi, false, false)?;
+            n.check_values(name)?;
             Ok(vec![*s; len])
         }
         Norm::List(l) if l.len() == len => {
-            for (i, &a) in l.iter().enumerate() {
-                range(&format!("{name}[{i}]"), a, lo, hi, false, false)?;
-            }
+            n.check_values(name)?;
             Ok(l.clone())
         }
         Norm::List(l) => Err(bad(format!("{name} has {} entries, need {len}", l.len()))),

@@ -128,10 +128,12 @@ fn fit(a: FitArgs) -> Result<()> {
     if let Some(p) = &a.save {
         // A missing folder is an error here (as before): it is not created.
         osrl_files::check_output(p).context("--save")?;
-        let inputs = [a.train.as_path(), a.test.as_path()];
-        let config = a.config.as_deref();
-        osrl_files::check_not_input(p, &[&inputs[..], config.as_slice()].concat())
-            .context("--save")?;
+        let inputs = [
+            Some(a.train.as_path()),
+            Some(a.test.as_path()),
+            a.config.as_deref(),
+        ];
+        osrl_files::check_not_input(p, &inputs).context("--save")?;
     }
     let n_out = cols - k;
     let mut cfg: LwprConfig = match &a.config {

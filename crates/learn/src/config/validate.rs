@@ -20,21 +20,13 @@ fn finite_at_least(x: f64, lo: f64) -> bool {
 /// the models are created (about 200 bytes), so this bounds that memory near 200 MB.
 pub const MAX_WARMUP_SAMPLES: usize = 1_000_000;
 
-/// The normalisation divisors a user gave an LWPR section, each within LWPR's range: the
-/// learner sets its models' scales itself, but the saved configuration keeps these values.
+/// The normalisation divisors a user gave an LWPR section, each within LWPR's range
+/// ([`lwpr::Norm::check_values`]): the learner sets its models' scales itself, but the saved
+/// configuration keeps these values.
 fn check_norms(section: &str, cfg: &lwpr::LwprConfig) -> Result<()> {
-    let (lo, hi) = lwpr::NORM_RANGE;
     for (key, norm) in [("norm_in", &cfg.norm_in), ("norm_out", &cfg.norm_out)] {
-        let values: &[f64] = match norm {
-            lwpr::Norm::Scalar(x) => std::slice::from_ref(x),
-            lwpr::Norm::List(v) => v,
-            lwpr::Norm::Keyword(_) => &[],
-        };
-        for x in values {
-            ensure((lo..=hi).contains(x), || {
-                format!("{section}.{key} = {x:e} must be within [{lo:e}, {hi:e}]")
-            })?;
-        }
+        norm.check_values(&format!("{section}.{key}"))
+            .map_err(|e| LearnError::InvalidConfig(e.to_string()))?;
     }
     Ok(())
 }
