@@ -5,7 +5,9 @@
 //!   device, a socket, a symbolic link) or whose folder cannot be written; [`write_atomic`]
 //!   writes through a temporary file and a rename, only over a regular file or a missing path;
 //!   [`write_or_fallback`] writes next to the path under a fresh name when that fails, so a long
-//!   run's result is never lost.
+//!   run's result is never lost. [`check_not_input`] refuses an output that is one of the run's
+//!   inputs (under any name); [`check_output_tree`] refuses, before a run writes many files
+//!   under a folder, any special file or link below it.
 //! - Inputs: [`read_limited`] reads only a regular file of at most a given size (a FIFO would
 //!   block, `/dev/zero` would never end).
 //!
