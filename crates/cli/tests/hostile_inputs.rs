@@ -128,3 +128,76 @@ fn values_that_crashed_or_never_finished_are_refused_by_name() {
         );
     }
 }
+
+/// Huge but finite values: each is refused before any work, its key and range named, instead of
+/// an error about a quantity it overflowed (a cost, LWPR's `norm_in`, a mass, a singular
+/// system) or a run that printed "command RMS inf".
+#[test]
+fn huge_finite_values_are_refused_naming_their_key() {
+    let d = scratch("huge");
+    let path = |name: &str| d.join(name).to_str().unwrap().to_string();
+    let configs = [
+        (
+            "train",
+            "[learner.nominal]\nkp = [1e300, 20.0, 20.0]\n",
+            "nominal.kp must lie in (0, 1000000.0]",
+        ),
+        (
+            "train",
+            "[sim.sensor_noise]\nq = 1e300\n",
+            "sensor_noise.q = 1e300",
+        ),
+        (
+            "simulate",
+            "[controller.gains]\nkp = 1e300\n",
+            "task gain kp = 1e300",
+        ),
+        (
+            "simulate",
+            "[model_error]\nmass_scale = 1e300\n",
+            "mass = 1e300: must lie in [0.001, 1000]",
+        ),
+        (
+            "simulate",
+            "[sim]\nactuator_noise = 1e300\n",
+            "actuator_noise = 1e300",
+        ),
+    ];
+    for (i, (cmd, text, what)) in configs.iter().enumerate() {
+        let f = path(&format!("c{i}.toml"));
+        std::fs::write(&f, text).unwrap();
+        let out = path(&format!("out{i}"));
+        let minutes: &[&str] = if *cmd == "train" {
+            &["--minutes", "0.05"]
+        } else {
+            &[]
+        };
+        let args = [&[*cmd, "--config", &f, "--out", &out][..], minutes].concat();
+        refused(&args, what);
+    }
+    let out = path("s");
+    refused(
+        &["simulate", "--model-error", "payload=1e9", "--out", &out],
+        "payload = 1000000000: must lie in [0, 10000]",
+    );
+    // A command-line value: clap's error adds its usage hint below the line.
+    let model = path("m.osrl");
+    let args = [
+        "adapt",
+        "--model",
+        &model,
+        "--change",
+        "com=1e300",
+        "--out",
+        &out,
+    ];
+    let (ok, stdout, err) = common::osrl(&args);
+    assert!(!ok && stdout.is_empty(), "{stdout}");
+    assert!(err.contains("com = 1e300: must lie in [0, 10]"), "{err}");
+    let profile = path("p.toml");
+    std::fs::write(&profile, "kd = [1e300, 1, 1, 1, 1, 1, 1]\n").unwrap();
+    refused(
+        &["robot", "--robot", "sarcos7", "--profile", &profile],
+        "kd = 1e300: joint gains must lie in [0, 10000.0]",
+    );
+}

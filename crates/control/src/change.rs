@@ -5,6 +5,7 @@
 
 use crate::error::{ControlError, Result};
 use crate::ik::{solve_ik, IkOptions};
+use crate::spec::num;
 use crate::trajectory::Trajectory;
 use osrl_dynamics::Model;
 use serde::{Deserialize, Serialize};
@@ -50,30 +51,18 @@ fn spec_error(spec: &str, reason: String) -> ControlError {
 }
 
 impl RobotChange {
-    /// Checks the ranges: `mass` finite and > 0; `com`, `payload`, `friction` finite and ≥ 0.
+    /// Checks the ranges ([`crate::MASS_SCALE_RANGE`] and the bounds beside it).
     ///
     /// # Errors
-    /// [`ControlError::ChangeSpec`] naming the field.
+    /// [`ControlError::ChangeSpec`] naming the field, its value and its range.
     pub fn validate(&self) -> Result<()> {
-        let bad = |what: &str, v: f64, need: &str| {
-            Err(spec_error(
-                &self.to_string(),
-                format!("{what} = {v}: must be {need}"),
-            ))
-        };
-        if !(self.mass_scale > 0.0 && self.mass_scale.is_finite()) {
-            return bad("mass", self.mass_scale, "a finite factor > 0");
-        }
-        for (what, v) in [
-            ("com", self.com_shift),
-            ("payload", self.payload),
-            ("friction", self.friction_scale),
-        ] {
-            if !(v >= 0.0 && v.is_finite()) {
-                return bad(what, v, "finite and ≥ 0");
-            }
-        }
-        Ok(())
+        crate::spec::check_ranges(
+            self.mass_scale,
+            self.com_shift,
+            self.payload,
+            self.friction_scale,
+        )
+        .map_err(|reason| spec_error(&self.to_string(), reason))
     }
 
     /// Whether nothing changes.
@@ -160,16 +149,16 @@ impl fmt::Display for RobotChange {
         let d = Self::default();
         let mut parts = Vec::new();
         if self.mass_scale != d.mass_scale {
-            parts.push(format!("mass={}", self.mass_scale));
+            parts.push(format!("mass={}", num(self.mass_scale)));
         }
         if self.com_shift != d.com_shift {
-            parts.push(format!("com={},seed={}", self.com_shift, self.seed));
+            parts.push(format!("com={},seed={}", num(self.com_shift), self.seed));
         }
         if self.friction_scale != d.friction_scale {
-            parts.push(format!("friction={}", self.friction_scale));
+            parts.push(format!("friction={}", num(self.friction_scale)));
         }
         if self.payload != d.payload {
-            parts.push(format!("payload={}", self.payload));
+            parts.push(format!("payload={}", num(self.payload)));
         }
         write!(f, "{}", parts.join(","))
     }

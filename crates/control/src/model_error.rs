@@ -2,6 +2,7 @@
 //! simulated robot's.
 
 use crate::error::{ControlError, Result};
+use crate::spec::num;
 use osrl_dynamics::Model;
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -42,22 +43,18 @@ impl Default for ModelError {
 }
 
 impl ModelError {
-    /// `mass_scale` finite and > 0, `com_shift` and `payload` finite and ≥ 0.
+    /// Checks the ranges ([`crate::MASS_SCALE_RANGE`] and the bounds beside it).
+    ///
+    /// # Errors
+    /// [`ControlError::ModelErrorSpec`] naming the field, its value and its range.
     pub fn validate(&self) -> Result<()> {
-        let ok = self.mass_scale > 0.0
-            && self.mass_scale.is_finite()
-            && self.com_shift >= 0.0
-            && self.com_shift.is_finite()
-            && self.payload >= 0.0
-            && self.payload.is_finite();
-        if ok {
-            Ok(())
-        } else {
-            Err(ControlError::ModelErrorSpec {
+        let friction = if self.friction { 1.0 } else { 0.0 };
+        crate::spec::check_ranges(self.mass_scale, self.com_shift, self.payload, friction).map_err(
+            |reason| ControlError::ModelErrorSpec {
                 spec: self.to_string(),
-                reason: "mass must be > 0; com and payload ≥ 0; all finite".into(),
-            })
-        }
+                reason,
+            },
+        )
     }
 
     /// Whether the controller's model equals the truth.
@@ -102,7 +99,10 @@ impl fmt::Display for ModelError {
         write!(
             f,
             "mass={},com={},friction={on},payload={},seed={}",
-            self.mass_scale, self.com_shift, self.payload, self.seed
+            num(self.mass_scale),
+            num(self.com_shift),
+            num(self.payload),
+            self.seed
         )
     }
 }

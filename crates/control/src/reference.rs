@@ -22,17 +22,26 @@ impl Default for TaskGains {
     }
 }
 
+/// Largest task stiffness `K_P` (1/s²): an error bandwidth of 10⁴ rad/s, beyond what any
+/// control loop of a few kHz realises; larger gains only overflow the command.
+pub const MAX_TASK_KP: f64 = 1e8;
+/// Largest task damping `K_D` (1/s): critical damping at [`MAX_TASK_KP`].
+pub const MAX_TASK_KD: f64 = 2e4;
+
 impl TaskGains {
-    /// Both gains finite and ≥ 0.
+    /// `kp` in [0, [`MAX_TASK_KP`]] and `kd` in [0, [`MAX_TASK_KD`]].
+    ///
+    /// # Errors
+    /// [`crate::ControlError::InvalidConfig`] naming the gain, its value and its range.
     pub fn validate(&self) -> crate::Result<()> {
-        if self.kp >= 0.0 && self.kd >= 0.0 && self.kp.is_finite() && self.kd.is_finite() {
-            Ok(())
-        } else {
-            Err(crate::ControlError::InvalidConfig(format!(
-                "task gains kp = {}, kd = {} must be finite and ≥ 0",
-                self.kp, self.kd
-            )))
+        for (key, v, hi) in [("kp", self.kp, MAX_TASK_KP), ("kd", self.kd, MAX_TASK_KD)] {
+            if !(0.0..=hi).contains(&v) {
+                return Err(crate::ControlError::InvalidConfig(format!(
+                    "task gain {key} = {v:?}: must lie in [0, {hi:?}]"
+                )));
+            }
         }
+        Ok(())
     }
 }
 

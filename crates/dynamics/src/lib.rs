@@ -48,11 +48,14 @@ pub use jacobian::{jacobian, jacobian_from_fk};
 pub use kinematics::{forward_kinematics, kinematics};
 pub use model::{
     Friction, JointKind, JointLimits, Link, LockedJoint, Model, ModelSpec, UrdfImport, GRAVITY,
-    MAX_DOF,
+    MAX_DOF, MAX_JOINT_KD, MAX_JOINT_KP,
 };
 pub use profile::{CostMetric, PathPlacement, RobotProfile};
 pub use rnea::{gravity, nonlinear_effects, rnea};
-pub use sim::{FrictionScheme, Measurement, Robot, SimConfig, SimRobot, MAX_SUBSTEPS};
+pub use sim::{
+    FrictionScheme, Measurement, Robot, SimConfig, SimRobot, MAX_ACTUATOR_NOISE, MAX_NOISE,
+    MAX_SUBSTEPS,
+};
 pub use spatial::Pose;
 
 /// Everything an operational space controller reads, in one call: kinematics (`ee_pos`,

@@ -11,6 +11,13 @@ use serde::{Deserialize, Serialize};
 /// the controllers factor it, so an absurd size is refused before anything is allocated.
 pub const MAX_DOF: usize = 1024;
 
+/// Largest joint PD stiffness `K_Pq` (N·m/rad or N/m): a million, above the mechanical stiffness
+/// of a geared robot joint, which no position loop can exceed; larger gains only overflow the
+/// nominal command.
+pub const MAX_JOINT_KP: f64 = 1e6;
+/// Largest joint PD damping `K_Dq` (N·m·s/rad or N·s/m).
+pub const MAX_JOINT_KD: f64 = 1e4;
+
 /// How a joint moves its link along or about its axis.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -191,7 +198,8 @@ pub struct ModelSpec {
     pub q_start: Vec<f64>,
     /// Rest posture of the nominal null-space behaviour (rad).
     pub q_rest: Vec<f64>,
-    /// Joint PD gains: stiffness (N·m/rad) and damping (N·m·s/rad).
+    /// Joint PD gains: stiffness (N·m/rad) and damping (N·m·s/rad), within [0, [`MAX_JOINT_KP`]]
+    /// and [0, [`MAX_JOINT_KD`]].
     pub kp: Vec<f64>,
     pub kd: Vec<f64>,
     /// What the URDF loader chose (tip, locked joints), if the model came from a URDF.
@@ -232,6 +240,16 @@ impl Model {
                 return bad(format!("{what} has {} entries for {n} joints", v.len()));
             }
             check_finite(what, v)?;
+        }
+        for (what, v, hi) in [
+            ("kp", &spec.kp, MAX_JOINT_KP),
+            ("kd", &spec.kd, MAX_JOINT_KD),
+        ] {
+            if let Some(x) = v.iter().find(|x| !(0.0..=hi).contains(*x)) {
+                return bad(format!(
+                    "{what} = {x:?}: joint gains must lie in [0, {hi:?}]"
+                ));
+            }
         }
         check_finite("gravity", spec.gravity.as_slice())?;
         check_finite("ee_offset", spec.ee_offset.as_slice())?;

@@ -136,7 +136,8 @@ impl Default for SimConfig {
 pub const MAX_SUBSTEPS: usize = 10_000;
 
 impl SimConfig {
-    /// Checks ranges: positive period, at least one substep, non-negative noise levels.
+    /// Checks ranges: positive period, at least one substep, noise levels within [0, [`MAX_NOISE`]]
+    /// and [0, [`MAX_ACTUATOR_NOISE`]].
     pub fn validate(&self) -> Result<()> {
         let bad = |m: &str| Err(DynamicsError::InvalidConfig(m.to_string()));
         if !(self.control_period > 0.0 && self.control_period.is_finite()) {
@@ -150,21 +151,36 @@ impl SimConfig {
         }
         let n = &self.sensor_noise;
         let noises = [
-            ("sensor_noise.q", n.q),
-            ("sensor_noise.qd", n.qd),
-            ("sensor_noise.x", n.x),
-            ("sensor_noise.xd", n.xd),
-            ("sensor_noise.xdd", n.xdd),
-            ("actuator_noise", self.actuator_noise),
+            ("sensor_noise.q", n.q, MAX_NOISE.q),
+            ("sensor_noise.qd", n.qd, MAX_NOISE.qd),
+            ("sensor_noise.x", n.x, MAX_NOISE.x),
+            ("sensor_noise.xd", n.xd, MAX_NOISE.xd),
+            ("sensor_noise.xdd", n.xdd, MAX_NOISE.xdd),
+            ("actuator_noise", self.actuator_noise, MAX_ACTUATOR_NOISE),
         ];
-        match noises.iter().find(|(_, s)| !(*s >= 0.0 && s.is_finite())) {
-            Some((what, s)) => Err(DynamicsError::InvalidConfig(format!(
-                "{what} = {s}: a noise standard deviation must be finite and ≥ 0"
+        match noises.iter().find(|(_, s, hi)| !(0.0..=*hi).contains(s)) {
+            Some((what, s, hi)) => Err(DynamicsError::InvalidConfig(format!(
+                "{what} = {s:?}: a noise standard deviation must lie in [0, {hi:?}]"
             ))),
             None => Ok(()),
         }
     }
 }
+
+/// Largest sensor noise standard deviations: half a turn in `q`, and for the other signals
+/// levels a hundred times any arm's motion (100 rad/s, 10 m, 100 m/s, 10⁴ m/s²); beyond them a
+/// signal carries no measurement, and the learner's normalisation overflows.
+pub const MAX_NOISE: SensorNoise = SensorNoise {
+    q: std::f64::consts::PI,
+    qd: 100.0,
+    x: 10.0,
+    xd: 100.0,
+    xdd: 1e4,
+};
+
+/// Largest actuator noise standard deviation (N·m): ten kN·m, far beyond the torque limits of any
+/// serial arm.
+pub const MAX_ACTUATOR_NOISE: f64 = 1e4;
 
 /// Counters of what the simulator had to enforce.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]

@@ -57,15 +57,16 @@ impl LearnerConfig {
             })?;
         }
         // The PD of the babbling and the returns home needs a restoring stiffness.
-        ensure(nom.kp.iter().all(|k| *k > 0.0), || {
+        let (kp_max, kd_max) = (osrl_dynamics::MAX_JOINT_KP, osrl_dynamics::MAX_JOINT_KD);
+        ensure(nom.kp.iter().all(|k| *k > 0.0 && *k <= kp_max), || {
             format!(
-                "nominal.kp must be > 0 (N·m/rad) for every joint, got {:?}",
+                "nominal.kp must lie in (0, {kp_max:?}] (N·m/rad) for every joint, got {:?}",
                 nom.kp
             )
         })?;
-        ensure(nom.kd.iter().all(|k| *k >= 0.0), || {
+        ensure(nom.kd.iter().all(|k| (0.0..=kd_max).contains(k)), || {
             format!(
-                "nominal.kd must be ≥ 0 (N·m·s/rad) for every joint, got {:?}",
+                "nominal.kd must lie in [0, {kd_max:?}] (N·m·s/rad) for every joint, got {:?}",
                 nom.kd
             )
         })
@@ -284,6 +285,8 @@ mod tests {
         let edits: Vec<(&str, Edit)> = vec![
             ("nominal.kp", Box::new(|c| c.nominal.kp = vec![-1.0; 3])),
             ("nominal.kd", Box::new(|c| c.nominal.kd[1] = -0.5)),
+            ("nominal.kp", Box::new(|c| c.nominal.kp[2] = 1e300)),
+            ("nominal.kd", Box::new(|c| c.nominal.kd[0] = 1e300)),
             (
                 "guards.warmup_samples",
                 Box::new(|c| c.guards.warmup_samples = 1 << 40),
