@@ -198,6 +198,6 @@ fn huge_finite_values_are_refused_naming_their_key() {
     std::fs::write(&profile, "kd = [1e300, 1, 1, 1, 1, 1, 1]\n").unwrap();
     refused(
         &["robot", "--robot", "sarcos7", "--profile", &profile],
-        "kd = 1e300: joint gains must lie in [0, 10000.0]",
+        "kd: joint 0 ('SFE_joint') is 1e300; at most 10000.0",
     );
 }

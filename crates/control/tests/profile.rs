@@ -209,6 +209,31 @@ fn bad_values_are_refused_naming_the_field() {
         },
         "null_space_frequency",
     );
+    // Huge but finite: refused by name, not as the infinite gains they would compute.
+    refused(
+        &planar,
+        RobotProfile {
+            kp: Some(vec![1.0, 1e300, 1.0]),
+            ..p()
+        },
+        "kp",
+    );
+    refused(
+        &planar,
+        RobotProfile {
+            null_space_frequency: Some(1e300),
+            ..p()
+        },
+        "null_space_frequency",
+    );
+    refused(
+        &planar,
+        RobotProfile {
+            null_space_damping: Some(1e300),
+            ..p()
+        },
+        "null_space_damping",
+    );
     let far = PathPlacement {
         centre: Some([3.0, 0.0, 0.0]),
         ..PathPlacement::default()

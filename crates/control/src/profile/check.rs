@@ -1,5 +1,6 @@
 //! Checks of the values a profile gives, each error naming the field and the joint.
 
+use super::{MAX_DAMPING, MAX_FREQUENCY};
 use crate::error::{ControlError, Result};
 use osrl_dynamics::{Model, RobotProfile};
 
@@ -93,9 +94,19 @@ pub(super) fn check_given(model: &Model, p: &RobotProfile) -> Result<()> {
             posture(field, v, model)?;
         }
     }
-    for (field, v) in [("kp", &p.kp), ("kd", &p.kd)] {
+    let gains = [
+        ("kp", &p.kp, osrl_dynamics::MAX_JOINT_KP),
+        ("kd", &p.kd, osrl_dynamics::MAX_JOINT_KD),
+    ];
+    for (field, v, hi) in gains {
         if let Some(v) = v {
             non_negative(field, v, model, false)?;
+            if let Some(i) = v.iter().position(|&x| x > hi) {
+                return bad(
+                    field,
+                    format!("{} is {:?}; at most {hi:?}", joint(model, i), v[i]),
+                );
+            }
         }
     }
     if let Some(v) = &p.torque_limits {
@@ -111,6 +122,19 @@ pub(super) fn check_given(model: &Model, p: &RobotProfile) -> Result<()> {
     for (field, x) in scalars {
         if let Some(x) = x {
             positive(field, x)?;
+        }
+    }
+    let bounded = [
+        (
+            "null_space_frequency",
+            p.null_space_frequency,
+            MAX_FREQUENCY,
+        ),
+        ("null_space_damping", p.null_space_damping, MAX_DAMPING),
+    ];
+    for (field, x, hi) in bounded {
+        if let Some(x) = x.filter(|&x| x > hi) {
+            return bad(field, format!("{x:?} is more than {hi:?}"));
         }
     }
     if let Some(s) = p.path.scale.filter(|&s| s > 1.0) {
