@@ -148,6 +148,26 @@ fn huge_finite_values_are_refused_naming_their_key() {
             "sensor_noise.q = 1e300",
         ),
         (
+            "train",
+            "[trajectory]\na = 1e300\n",
+            "figure-8 width a must be > 0 and at most 1000.0 m, got 1e300",
+        ),
+        (
+            "train",
+            "[trajectory]\ncentre = [0.5, 0.0, -1e300]\n",
+            "centre [0.5, 0.0, -1e300] lies beyond ±1000.0 m",
+        ),
+        (
+            "train",
+            "[learner.nominal]\nq_rest = [0.0, 1e300, 0.0]\n",
+            "nominal.q_rest must lie within ±1000.0",
+        ),
+        (
+            "train",
+            "[train.curriculum]\nstop_seconds = 1e300\n",
+            "curriculum.stop_seconds = 1e300 is out of range",
+        ),
+        (
             "simulate",
             "[controller.gains]\nkp = 1e300\n",
             "task gain kp = 1e300",

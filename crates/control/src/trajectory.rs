@@ -103,12 +103,30 @@ fn plane(e1: Vector3<f64>, e2: Vector3<f64>) -> Result<(Vector3<f64>, Vector3<f6
     Ok((u, v))
 }
 
-fn positive(what: &str, v: f64) -> Result<()> {
-    if v > 0.0 && v.is_finite() {
+/// Largest size and farthest point of a path (m, per coordinate): a kilometre, far beyond any
+/// arm's reach; the reachability check then names the point in a short line.
+pub const MAX_PATH_METRES: f64 = 1e3;
+
+/// A size in `(0, MAX_PATH_METRES]`.
+fn size(what: &str, v: f64) -> Result<()> {
+    if v > 0.0 && v <= MAX_PATH_METRES {
         Ok(())
     } else {
         Err(ControlError::InvalidTrajectory(format!(
-            "{what} must be a positive number, got {v}"
+            "{what} must be > 0 and at most {MAX_PATH_METRES:?} m, got {v:?}"
+        )))
+    }
+}
+
+/// A point with every coordinate within `±MAX_PATH_METRES`.
+fn point(what: &str, p: &Vector3<f64>) -> Result<()> {
+    finite(what, p)?;
+    if p.iter().all(|x| x.abs() <= MAX_PATH_METRES) {
+        Ok(())
+    } else {
+        Err(ControlError::InvalidTrajectory(format!(
+            "{what} {:?} lies beyond ±{MAX_PATH_METRES:?} m",
+            p.as_slice()
         )))
     }
 }
@@ -136,8 +154,9 @@ fn duration(what: &str, v: f64, zero_ok: bool) -> Result<()> {
 
 impl Trajectory {
     /// A figure-8 (see [`Shape::Figure8`]) with period `period` (s) and start ramp `ramp` (s).
-    /// `e1`, `e2` are normalised. Fails on non-finite values, a non-positive size or period, a
-    /// negative ramp, or parallel directions.
+    /// `e1`, `e2` are normalised. Fails on non-finite values, a size outside `(0,`
+    /// [`MAX_PATH_METRES`]`]` or a centre beyond it, a period outside `(0,` [`MAX_PATH_SECONDS`]`]`,
+    /// a negative or too long ramp, or parallel directions.
     #[allow(clippy::too_many_arguments)]
     pub fn figure8(
         centre: Vector3<f64>,
@@ -148,10 +167,10 @@ impl Trajectory {
         period: f64,
         ramp: f64,
     ) -> Result<Self> {
-        finite("centre", &centre)?;
+        point("centre", &centre)?;
         let (e1, e2) = plane(e1, e2)?;
-        positive("figure-8 width a", a)?;
-        positive("figure-8 height b", b)?;
+        size("figure-8 width a", a)?;
+        size("figure-8 height b", b)?;
         let shape = Shape::Figure8 {
             centre,
             e1,
@@ -171,9 +190,9 @@ impl Trajectory {
         period: f64,
         ramp: f64,
     ) -> Result<Self> {
-        finite("centre", &centre)?;
+        point("centre", &centre)?;
         let (e1, e2) = plane(e1, e2)?;
-        positive("circle radius", radius)?;
+        size("circle radius", radius)?;
         let shape = Shape::Circle {
             centre,
             e1,
@@ -191,7 +210,7 @@ impl Trajectory {
             ));
         }
         for p in &points {
-            finite("point", p)?;
+            point("point", p)?;
         }
         duration("move_time", move_time, false)?;
         let period = move_time * points.len() as f64;
@@ -221,8 +240,8 @@ impl Trajectory {
     /// an approach the path already had. Fails on a non-finite `from` or a non-positive
     /// `seconds`.
     pub fn with_approach(mut self, from: Vector3<f64>, seconds: f64) -> Result<Self> {
-        finite("approach start", &from)?;
-        positive("approach seconds", seconds)?;
+        point("approach start", &from)?;
+        duration("approach seconds", seconds, false)?;
         self.approach = None;
         let to = self.sample(0.0).x;
         self.approach = Some(Approach { from, to, seconds });

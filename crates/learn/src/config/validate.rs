@@ -20,6 +20,10 @@ fn finite_at_least(x: f64, lo: f64) -> bool {
 /// the models are created (about 200 bytes), so this bounds that memory near 200 MB.
 pub const MAX_WARMUP_SAMPLES: usize = 1_000_000;
 
+/// Largest `|q_rest|` (rad or m): a rest posture further out is no posture (the data sheets'
+/// joint ranges are within ±2π), and its PD torque overflows the cost.
+const MAX_ABS_REST: f64 = 1e3;
+
 /// The normalisation divisors a user gave an LWPR section, each within LWPR's range
 /// ([`lwpr::Norm::check_values`]): the learner sets its models' scales itself, but the saved
 /// configuration keeps these values.
@@ -56,6 +60,12 @@ impl LearnerConfig {
                 format!("{what} needs {n} finite values, got {v:?}")
             })?;
         }
+        ensure(nom.q_rest.iter().all(|q| q.abs() <= MAX_ABS_REST), || {
+            format!(
+                "nominal.q_rest must lie within ±{MAX_ABS_REST:?} (rad or m), got {:?}",
+                nom.q_rest
+            )
+        })?;
         // The PD of the babbling and the returns home needs a restoring stiffness.
         let (kp_max, kd_max) = (osrl_dynamics::MAX_JOINT_KP, osrl_dynamics::MAX_JOINT_KD);
         ensure(nom.kp.iter().all(|k| *k > 0.0 && *k <= kp_max), || {
@@ -287,6 +297,7 @@ mod tests {
             ("nominal.kd", Box::new(|c| c.nominal.kd[1] = -0.5)),
             ("nominal.kp", Box::new(|c| c.nominal.kp[2] = 1e300)),
             ("nominal.kd", Box::new(|c| c.nominal.kd[0] = 1e300)),
+            ("nominal.q_rest", Box::new(|c| c.nominal.q_rest[1] = -1e300)),
             (
                 "guards.warmup_samples",
                 Box::new(|c| c.guards.warmup_samples = 1 << 40),

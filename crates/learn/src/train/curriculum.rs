@@ -105,7 +105,7 @@ impl CurriculumConfig {
         for (what, v, zero_ok, hi) in fields {
             if !(v <= hi && (v > 0.0 || (zero_ok && v == 0.0))) {
                 return bad(format!(
-                    "curriculum.{what} = {v} is out of range ({} and at most {hi:e})",
+                    "curriculum.{what} = {v:?} is out of range ({} and at most {hi:?})",
                     if zero_ok { "≥ 0" } else { "> 0" }
                 ));
             }
