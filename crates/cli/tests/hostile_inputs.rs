@@ -164,6 +164,16 @@ fn huge_finite_values_are_refused_naming_their_key() {
         ),
         (
             "train",
+            "[learner.partition.lwpr]\ninit_d = 0\n",
+            "partition.lwpr: invalid LWPR config: init_d",
+        ),
+        (
+            "train",
+            "[learner.gravity.lwpr]\nw_gen = 0\n",
+            "gravity.lwpr: invalid LWPR config: w_gen = 0",
+        ),
+        (
+            "train",
             "[train.curriculum]\nstop_seconds = 1e300\n",
             "curriculum.stop_seconds = 1e300 is out of range",
         ),

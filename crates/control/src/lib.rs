@@ -57,6 +57,8 @@ pub use osc::{CommandInfo, Osc};
 pub use reference::{reference_acceleration, task_error, TaskGains, MAX_TASK_KD, MAX_TASK_KP};
 pub use settle::settle_at_start;
 pub use spec::{MASS_SCALE_RANGE, MAX_COM_SHIFT, MAX_FRICTION_SCALE, MAX_PAYLOAD};
-pub use trajectory::{Shape, Target, Trajectory, MAX_PATH_METRES, MAX_PATH_SECONDS};
+pub use trajectory::{
+    Shape, Target, Trajectory, MAX_PATH_METRES, MAX_PATH_SECONDS, MIN_PATH_SECONDS,
+};
 pub use trajectory_config::{TrajectoryConfig, TrajectoryKind};
 pub use warp::TimeWarp;

@@ -135,19 +135,18 @@ fn point(what: &str, p: &Vector3<f64>) -> Result<()> {
 /// through the ramp and sample whole cycles, so absurd durations would never finish.
 pub const MAX_PATH_SECONDS: f64 = 3600.0;
 
-/// `v` is a duration in `(0, MAX_PATH_SECONDS]` (`[0, …]` with `zero_ok`).
+/// Shortest period, move time or start ramp of a path (s): a millisecond, below any control
+/// period; shorter ones make the path's accelerations overflow (`a ω²` with `ω = 2π / period`).
+pub const MIN_PATH_SECONDS: f64 = 1e-3;
+
+/// `v` is a duration in `[MIN_PATH_SECONDS, MAX_PATH_SECONDS]` (or 0 with `zero_ok`).
 fn duration(what: &str, v: f64, zero_ok: bool) -> Result<()> {
-    if (v > 0.0 || (zero_ok && v == 0.0)) && v <= MAX_PATH_SECONDS {
+    if (MIN_PATH_SECONDS..=MAX_PATH_SECONDS).contains(&v) || (zero_ok && v == 0.0) {
         Ok(())
     } else {
-        let lo = if zero_ok { "≥ 0" } else { "> 0" };
-        let v = if v.abs() >= 1e6 {
-            format!("{v:e}")
-        } else {
-            v.to_string()
-        };
+        let zero = if zero_ok { "0 or " } else { "" };
         Err(ControlError::InvalidTrajectory(format!(
-            "{what} must be {lo} and at most {MAX_PATH_SECONDS} s, got {v}"
+            "{what} must be {zero}between {MIN_PATH_SECONDS} and {MAX_PATH_SECONDS} s, got {v:?}"
         )))
     }
 }
@@ -155,8 +154,8 @@ fn duration(what: &str, v: f64, zero_ok: bool) -> Result<()> {
 impl Trajectory {
     /// A figure-8 (see [`Shape::Figure8`]) with period `period` (s) and start ramp `ramp` (s).
     /// `e1`, `e2` are normalised. Fails on non-finite values, a size outside `(0,`
-    /// [`MAX_PATH_METRES`]`]` or a centre beyond it, a period outside `(0,` [`MAX_PATH_SECONDS`]`]`,
-    /// a negative or too long ramp, or parallel directions.
+    /// [`MAX_PATH_METRES`]`]` or a centre beyond it, a period outside [[`MIN_PATH_SECONDS`],
+    /// [`MAX_PATH_SECONDS`]], a ramp neither 0 nor inside that range, or parallel directions.
     #[allow(clippy::too_many_arguments)]
     pub fn figure8(
         centre: Vector3<f64>,

@@ -159,12 +159,22 @@ fn unreachable_and_malformed_trajectories_give_clear_errors() {
     let e = Trajectory::figure8(c, x, z, 0.1, 0.1, 4.0, 1e300).unwrap_err();
     assert!(
         e.to_string()
-            .contains("ramp must be ≥ 0 and at most 3600 s"),
+            .contains("ramp must be 0 or between 0.001 and 3600 s, got 1e300"),
         "{e}"
     );
     assert!(Trajectory::circle(c, x, z, 0.1, 1e300, 1.0).is_err());
     assert!(Trajectory::min_jerk(vec![c, c], 1e300).is_err());
     assert!(Trajectory::figure8(c, x, z, 0.1, 0.1, 3600.0, 3600.0).is_ok());
+    // Durations whose accelerations overflow (`xdd` was inf at a period of 1e-300 s).
+    let e = Trajectory::figure8(c, x, z, 0.1, 0.1, 1e-300, 1.0).unwrap_err();
+    assert!(e.to_string().contains("period must be between"), "{e}");
+    assert!(Trajectory::figure8(c, x, z, 0.1, 0.1, 4.0, 1e-300).is_err());
+    assert!(Trajectory::min_jerk(vec![c, c], 1e-300).is_err());
+    let fast = Trajectory::figure8(c, x, z, 0.1, 0.1, 1e-3, 1e-3).unwrap();
+    assert!(fast.sample(0.0123).xdd.iter().all(|a| a.is_finite()));
+    // Sizes and points beyond a kilometre.
+    assert!(Trajectory::circle(c, x, z, 1e300, 4.0, 1.0).is_err());
+    assert!(Trajectory::min_jerk(vec![c, c * 1e9], 1.0).is_err());
 }
 
 #[test]

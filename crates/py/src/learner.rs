@@ -110,13 +110,14 @@ impl PyLearner {
     #[pyo3(signature = (last_sent = None))]
     fn start_episode(&mut self, last_sent: Option<&Bound<'_, PyAny>>) -> PyResult<()> {
         match last_sent {
-            None => self.learner.start_episode(None),
+            None => self.learner.start_episode(None).map_err(learn_err),
             Some(u) => {
                 read_checked("last_sent", u, self.learner.dims().0, &mut self.q)?;
-                self.learner.start_episode(Some(&self.q));
+                self.learner
+                    .start_episode(Some(&self.q))
+                    .map_err(learn_err)
             }
         }
-        Ok(())
     }
 
     /// Whether the warm-up is over and the local models exist.

@@ -105,7 +105,7 @@ impl Evaluator {
         // A copy: the evaluation neither learns nor leaves traces in the learner's counters or
         // its command memory (the training episode it interrupts goes on as it was).
         let learner = &mut learner.clone();
-        learner.start_episode(None);
+        learner.start_episode(None)?;
         let (n, m) = learner.dims();
         self.sim.reset(&self.home, &vec![0.0; n])?;
         let axes = self.sim.model().task_axes().to_vec();

@@ -313,7 +313,7 @@ mod tests {
             ),
         ] {
             let vd = center[3..].to_vec();
-            learner.start_episode(None); // no rate limit against the previous case
+            learner.start_episode(None).unwrap(); // no rate limit against the previous case
             let src = learner.command::<rand_chacha::ChaCha8Rng>(&qq, &vd, &xdd, None, &mut u);
             assert_eq!(src.unwrap(), source, "field {id:?}");
             let mut acts = Vec::new();
@@ -358,6 +358,36 @@ mod tests {
             .unwrap();
         assert!(u.iter().all(|v| v.abs() <= 0.1), "{u:?}");
         assert_eq!(learner.stats().clipped, before.clipped + 1);
+    }
+
+    /// A `last_sent` beyond the torque limits (a robot that held a larger command) does not
+    /// lead the rate limit's commands beyond them; a non-finite or short one is refused.
+    #[test]
+    fn commands_stay_within_the_limits_after_a_last_sent_beyond_them() {
+        let mut cfg = fixture::config();
+        cfg.guards.torque_limits = vec![60.0, 40.0, 20.0];
+        let (mut learner, _, last) = fixture::ready(cfg, 100, 0);
+        let q = last.q.as_slice();
+        for far in [100.0, 1e300] {
+            learner.start_episode(Some(&[far; 3])).unwrap();
+            for _ in 0..30 {
+                let mut u = [0.0; 3];
+                learner
+                    .command::<rand_chacha::ChaCha8Rng>(q, &[0.0; 3], &[0.0; 2], None, &mut u)
+                    .unwrap();
+                let within = u.iter().zip([60.0, 40.0, 20.0]).all(|(v, l)| v.abs() <= l);
+                assert!(within, "last_sent {far}: {u:?}");
+            }
+        }
+        let stats = learner.stats();
+        let nan = learner.start_episode(Some(&[0.0, f64::NAN, 0.0]));
+        assert!(matches!(
+            nan,
+            Err(crate::LearnError::NonFinite("last_sent"))
+        ));
+        let short = learner.start_episode(Some(&[0.0; 2]));
+        assert!(matches!(short, Err(crate::LearnError::Dimension { .. })));
+        assert_eq!(learner.stats(), stats);
     }
 
     /// `max_j |a_j − b_j|`.
@@ -428,7 +458,7 @@ mod tests {
         let (q, vd) = (c[..3].to_vec(), c[3..].to_vec());
         let (mut prev, mut u) = (None::<[f64; 3]>, [0.0; 3]);
         let step = 50.0 * 0.002;
-        learner.start_episode(None);
+        learner.start_episode(None).unwrap();
         let before = learner.stats().rate_limited;
         for _ in 0..2000 {
             learner

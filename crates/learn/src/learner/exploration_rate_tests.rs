@@ -19,7 +19,7 @@ fn steps_at_a_fixed_state(max_rate: Option<f64>) -> (f64, f64) {
     let (q, vd) = (c[..3].to_vec(), c[3..].to_vec());
     let (mut prev, mut u) = (None::<[f64; 3]>, [0.0; 3]);
     let (mut largest, mut sent) = (0.0f64, Vec::new());
-    learner.start_episode(None);
+    learner.start_episode(None).unwrap();
     for k in 0..4000 {
         learner.set_exploration_gain(if (k / 500) % 2 == 0 { 1.0 } else { 0.0 });
         learner

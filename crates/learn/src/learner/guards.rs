@@ -45,6 +45,14 @@ impl RateLimiter {
         }
     }
 
+    /// Sets the command last sent to `prev`, each joint clamped to `±limits`.
+    pub fn reset_within(&mut self, prev: &[f64], limits: &[f64]) {
+        for ((p, v), l) in self.prev.iter_mut().zip(prev).zip(limits) {
+            *p = v.clamp(-l, *l);
+        }
+        self.has_prev = true;
+    }
+
     /// Moves `u` to within the limit of the previous command, remembers it, and returns
     /// whether any joint was limited.
     pub fn apply(&mut self, u: &mut [f64]) -> bool {

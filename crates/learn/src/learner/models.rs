@@ -3,7 +3,7 @@
 //! warm-up's scales.
 
 use crate::config::LearnerConfig;
-use crate::error::Result;
+use crate::error::{LearnError, Result};
 use crate::forward::ForwardModel;
 use crate::gravity::GravityModel;
 use crate::local::LocalControllers;
@@ -52,6 +52,33 @@ fn std_of(warm: &[Measurement], f: &dyn Fn(&Measurement) -> f64) -> f64 {
 }
 
 impl Models {
+    /// Checks the LWPR sections of `cfg` for `n` joints and `m` task dimensions by building the
+    /// models [`Models::from_warm_up`] builds from them, at unit scales: a bad section is
+    /// refused when the learner is made, not a warm-up later.
+    ///
+    /// # Errors
+    /// [`LearnError::InvalidConfig`] naming the section (`partition.lwpr`, `gravity.lwpr`).
+    pub fn check_config(cfg: &LearnerConfig, n: usize, m: usize) -> Result<()> {
+        let (unit, vs, x) = (
+            vec![1.0; n],
+            cfg.partition.velocity_scale,
+            &cfg.experimental,
+        );
+        fn named(section: &'static str) -> impl Fn(LearnError) -> LearnError {
+            move |e| LearnError::InvalidConfig(format!("{section}: {e}"))
+        }
+        let g = &cfg.gravity.lwpr;
+        GravityModel::new(n, g, x.gravity_velocity_products, vs, 1.0, &unit)
+            .map_err(named("gravity.lwpr"))?;
+        if let Some(gate) = cfg.gravity.static_gate {
+            GravityModel::new_static(n, g, gate, vs, 1.0, &unit).map_err(named("gravity.lwpr"))?;
+        }
+        let p = &cfg.partition.lwpr;
+        ForwardModel::new(n, m, p, vs, &unit, 1.0, x.forward_uses_q)
+            .map_err(named("partition.lwpr"))?;
+        Ok(())
+    }
+
     /// The models for `n` joints and `m` task dimensions, scaled by the warm-up `warm` (control
     /// period `dt`): torques per joint, task accelerations, joint accelerations.
     pub fn from_warm_up(

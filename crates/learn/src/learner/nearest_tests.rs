@@ -9,7 +9,7 @@ use crate::local::smoothstep;
 /// The command at `(q, q̇)` without exploration, and its source.
 fn command(learner: &mut crate::Learner, q: &[f64], qd: &[f64]) -> ([f64; 3], CommandSource) {
     let mut u = [0.0; 3];
-    learner.start_episode(None); // no rate limit against the previous query
+    learner.start_episode(None).unwrap(); // no rate limit against the previous query
     let src = learner
         .command::<rand_chacha::ChaCha8Rng>(q, qd, &[0.3, -0.2], None, &mut u)
         .unwrap();

@@ -8,7 +8,7 @@ use rand_chacha::ChaCha8Rng;
 /// The command (no exploration) at `q` with `q̇ = 0`, and the `Â` of its blend.
 fn command_and_gain(learner: &mut Learner, q: &[f64]) -> ([f64; 3], [f64; 6]) {
     let (mut u, mut a, qd) = ([0.0; 3], [0.0; 6], [0.0; 3]);
-    learner.start_episode(None);
+    learner.start_episode(None).unwrap();
     learner
         .command::<ChaCha8Rng>(q, &qd, &[0.3, -0.2], None, &mut u)
         .unwrap();

@@ -51,7 +51,7 @@ mod tests {
         learner.cfg.controllers.command_projection = kc;
         let (q, qd) = (last.q.as_slice().to_vec(), last.qd.as_slice().to_vec());
         let (mut u, mut u0, mut a) = ([0.0; 3], [0.0; 3], [0.0; 6]);
-        learner.start_episode(None);
+        learner.start_episode(None).unwrap();
         learner
             .command::<rand_chacha::ChaCha8Rng>(&q, &qd, &[0.3, -0.2], None, &mut u)
             .unwrap();
@@ -190,7 +190,7 @@ mod tests {
             let q: Vec<f64> = (0..3)
                 .map(|j| q0[j] + [1.0, -0.6, 0.8][j] * h * k as f64)
                 .collect();
-            learner.start_episode(None); // no rate limit between the points
+            learner.start_episode(None).unwrap(); // no rate limit between the points
             learner
                 .command::<rand_chacha::ChaCha8Rng>(&q, &qd, &xdd, None, &mut u)
                 .unwrap();

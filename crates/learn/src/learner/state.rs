@@ -77,6 +77,7 @@ impl Learner {
                 "need 0 < m ≤ n and a finite dt > 0 (n = {n}, m = {m}, dt = {dt})"
             )));
         }
+        Models::check_config(&cfg, n, m)?;
         let x = &cfg.experimental;
         let features = Features::new(n, m, x.position_features, x.dynamics_bilinear)
             .with_controller_bilinear(cfg.controllers.bilinear);
@@ -155,10 +156,33 @@ impl Learner {
     }
 
     /// Starts a new sequence of commands: the command last sent to the robot (`None`: unknown,
-    /// the next command is not rate limited) and the exploration noise back at 0.
-    pub fn start_episode(&mut self, last_sent: Option<&[f64]>) {
-        self.rate.reset(last_sent);
+    /// the next command is not rate limited) and the exploration noise back at 0. A
+    /// `last_sent` beyond the torque limits (`guards.torque_limits`) counts as sent at the
+    /// limit: the learner's commands stay within its limits, also while the rate limit leads
+    /// them away from a command it did not send.
+    ///
+    /// # Errors
+    /// [`LearnError::Dimension`] for a `last_sent` without one value per joint,
+    /// [`LearnError::NonFinite`] for a value that is not finite; the learner is unchanged.
+    pub fn start_episode(&mut self, last_sent: Option<&[f64]>) -> Result<()> {
+        match last_sent {
+            None => self.rate.reset(None),
+            Some(u) => {
+                if u.len() != self.n {
+                    return Err(LearnError::Dimension {
+                        what: "last_sent",
+                        expected: self.n,
+                        got: u.len(),
+                    });
+                }
+                if u.iter().any(|v| !v.is_finite()) {
+                    return Err(LearnError::NonFinite("last_sent"));
+                }
+                self.rate.reset_within(u, &self.cfg.guards.torque_limits);
+            }
+        }
         self.noise.reset();
+        Ok(())
     }
 
     pub fn config(&self) -> &LearnerConfig {

@@ -64,7 +64,7 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
             rng,
         );
         // The fade from the PD hold takes the switch; the learner's own limiter starts afresh.
-        self.learner.start_episode(None);
+        self.learner.start_episode(None)?;
         self.dob.reset();
         // A continuation's controller is trained: its first episode switches as any other.
         let first = self.progress.episodes == 1 && !self.continuation;
