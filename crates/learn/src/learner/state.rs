@@ -66,15 +66,19 @@ pub struct Learner {
 
 impl Learner {
     /// A learner for a robot with `n` joints and an `m`-dimensional task, controlled every `dt`
-    /// seconds.
+    /// seconds (within [`crate::CONTROL_PERIOD_RANGE`]).
     ///
     /// # Errors
     /// [`LearnError::InvalidConfig`] on an invalid config or dimensions.
     pub fn new(n: usize, m: usize, dt: f64, cfg: LearnerConfig) -> Result<Self> {
         cfg.validate(n)?;
-        if m == 0 || m > n || !(dt > 0.0 && dt.is_finite()) {
+        let periods = crate::CONTROL_PERIOD_RANGE;
+        if m == 0 || m > n || !periods.contains(&dt) {
             return Err(LearnError::InvalidConfig(format!(
-                "need 0 < m ≤ n and a finite dt > 0 (n = {n}, m = {m}, dt = {dt})"
+                "need 0 < m ≤ n and a control period dt within [{:?}, {:?}] s, the range a \
+                 saved model accepts (n = {n}, m = {m}, dt = {dt:?})",
+                periods.start(),
+                periods.end()
             )));
         }
         Models::check_config(&cfg, n, m)?;
