@@ -45,6 +45,9 @@ pub enum FileError {
     /// The path exists and is not a folder, where a folder is needed.
     #[error("{path}: is a {kind}, not a folder: a folder is needed here")]
     NotFolder { path: String, kind: &'static str },
+    /// An output file that exists and is read-only: its owner protected it.
+    #[error("{path}: is read-only; not replaced (make it writable or give another name)")]
+    ReadOnly { path: String },
     /// The folder an output file would go in does not exist.
     #[error("{path}: the folder does not exist")]
     MissingFolder { path: String },
@@ -107,13 +110,13 @@ pub fn kind(meta: &Metadata) -> &'static str {
     }
 }
 
-/// Checks that `path` can be written as a file: missing or a regular file (not a directory,
-/// FIFO, device, socket or symbolic link), in an existing folder this process can create a
-/// file in (probed with a temporary file, removed at once). Changes nothing.
+/// Checks that `path` can be written as a file: missing or a writable regular file (not a
+/// directory, FIFO, device, socket or symbolic link), in an existing folder this process can
+/// create a file in (probed with a temporary file, removed at once). Changes nothing.
 ///
 /// # Errors
-/// [`FileError::NotRegular`] naming the kind of file, or [`FileError::Io`] for a folder that
-/// is missing or not writable.
+/// [`FileError::NotRegular`] naming the kind of file, [`FileError::ReadOnly`] for a read-only
+/// file, or [`FileError::Io`] for a folder that is missing or not writable.
 pub fn check_output(path: &Path) -> Result<()> {
     if let Ok(meta) = std::fs::symlink_metadata(path) {
         if !meta.file_type().is_file() {
@@ -121,6 +124,11 @@ pub fn check_output(path: &Path) -> Result<()> {
                 path: path.display().to_string(),
                 kind: kind(&meta),
                 why: "not replaced (give the name of a new or regular file)",
+            });
+        }
+        if meta.permissions().readonly() {
+            return Err(FileError::ReadOnly {
+                path: path.display().to_string(),
             });
         }
     }

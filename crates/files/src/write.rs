@@ -8,15 +8,33 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 static COUNTER: AtomicU64 = AtomicU64::new(0);
 
-/// A new file named `base` + `.PID.N.tmp`, created exclusively (an existing file or symbolic
-/// link of that name is never written through).
+/// Longest file name kept whole in a temporary file's name: with the `.PID.N.tmp` suffix it
+/// stays within the 255 bytes a file name may have on common file systems.
+const TEMP_STEM_BYTES: usize = 200;
+
+/// The file name of `path` (`output` without one), cut to at most [`TEMP_STEM_BYTES`] bytes at
+/// a character boundary: the stem of the temporary and the fallback names.
+fn short_name(path: &Path) -> String {
+    let Some(name) = path.file_name() else {
+        return "output".into();
+    };
+    let name = name.to_string_lossy();
+    let mut end = name.len().min(TEMP_STEM_BYTES);
+    while !name.is_char_boundary(end) {
+        end -= 1;
+    }
+    name[..end].to_string()
+}
+
+/// A new file named like `base` + `.PID.N.tmp` in `base`'s folder (a file name longer than
+/// [`TEMP_STEM_BYTES`] cut to that many characters first), created exclusively (an existing
+/// file or symbolic link of that name is never written through).
 pub(crate) fn create_temp(base: &Path) -> std::io::Result<(PathBuf, File)> {
+    let stem = short_name(base);
     let mut tries = 0;
     loop {
         let n = COUNTER.fetch_add(1, Ordering::Relaxed);
-        let mut name = base.as_os_str().to_owned();
-        name.push(format!(".{}.{n}.tmp", std::process::id()));
-        let tmp = PathBuf::from(name);
+        let tmp = folder_of(base).join(format!("{stem}.{}.{n}.tmp", std::process::id()));
         match File::options().write(true).create_new(true).open(&tmp) {
             Ok(f) => return Ok((tmp, f)),
             Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists && tries < 100 => tries += 1,
@@ -28,14 +46,23 @@ pub(crate) fn create_temp(base: &Path) -> std::io::Result<(PathBuf, File)> {
 /// Writes `bytes` to `path` through a new temporary file next to it and a rename, as `mv`
 /// does, after [`check_output`]: only a missing path or a regular file is replaced. A failure,
 /// or a crash (the data is synced before the rename), leaves any old file at `path` whole; the
-/// temporary file is removed on failure. The new file has default permissions.
+/// temporary file is removed on failure. A replaced file's permissions are kept; a new file
+/// has default permissions.
 ///
 /// # Errors
 /// As [`check_output`], or [`FileError::Io`] when writing or renaming fails.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     check_output(path)?;
     let (tmp, mut file) = create_temp(path).map_err(io(path, "create a temporary file for"))?;
-    let written = file.write_all(bytes).and_then(|()| file.sync_all());
+    // A replaced file keeps its permissions.
+    let mode = std::fs::symlink_metadata(path).map(|m| m.permissions());
+    let written = file
+        .write_all(bytes)
+        .and_then(|()| match mode {
+            Ok(p) => file.set_permissions(p),
+            Err(_) => Ok(()),
+        })
+        .and_then(|()| file.sync_all());
     drop(file);
     // Checked again just before the rename: something may have appeared at `path` meanwhile.
     let result = written
@@ -60,7 +87,7 @@ pub struct Written {
 }
 
 /// Writes `bytes` to `path` ([`write_atomic`]); if that fails, to a fresh name next to it
-/// (`NAME.recovered-PID-N`), or else in the system's temporary folder, so that the result of
+/// (`NAME.recovered-PID-N`, `NAME` cut as in the temporary file's name), or else in the system's temporary folder, so that the result of
 /// a long run is not lost. The caller reports [`Written::failed`] and [`Written::path`].
 ///
 /// # Errors
@@ -75,9 +102,7 @@ pub fn write_or_fallback(path: &Path, bytes: &[u8]) -> Result<Written> {
         }
         Err(e) => e,
     };
-    let name = path
-        .file_name()
-        .map_or_else(|| "output".into(), |n| n.to_string_lossy().into_owned());
+    let name = short_name(path);
     for dir in [folder_of(path), std::env::temp_dir()] {
         let n = COUNTER.fetch_add(1, Ordering::Relaxed);
         let fresh = dir.join(format!("{name}.recovered-{}-{n}", std::process::id()));
@@ -134,6 +159,38 @@ mod tests {
         assert!(check_output(&d.join("no").join("f")).is_err());
         assert!(check_output(&d.join("sub/")).is_err());
         assert!(check_output_dir_ok(&d));
+        std::fs::remove_dir_all(&d).unwrap();
+    }
+
+    /// A name of 250 bytes is written (its temporary file's name is cut to fit); a replaced
+    /// file keeps its permissions; a read-only one is refused and kept.
+    #[test]
+    fn long_names_permissions_and_read_only_files() {
+        let d = scratch("modes");
+        let long = d.join(format!("{}.json", "é".repeat(123)));
+        assert_eq!(long.file_name().unwrap().len(), 251);
+        write_atomic(&long, b"one").unwrap();
+        assert_eq!(std::fs::read(&long).unwrap(), b"one");
+        assert_eq!(short_name(&long).len(), 200);
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            let p = d.join("private");
+            write_atomic(&p, b"one").unwrap();
+            std::fs::set_permissions(&p, std::fs::Permissions::from_mode(0o600)).unwrap();
+            write_atomic(&p, b"two").unwrap();
+            let mode = std::fs::metadata(&p).unwrap().permissions().mode() & 0o777;
+            assert_eq!((std::fs::read(&p).unwrap(), mode), (b"two".to_vec(), 0o600));
+            std::fs::set_permissions(&p, std::fs::Permissions::from_mode(0o444)).unwrap();
+            let e = write_atomic(&p, b"three").unwrap_err().to_string();
+            assert!(e.contains("is read-only"), "{e}");
+            assert_eq!(std::fs::read(&p).unwrap(), b"two");
+        }
+        // Nothing but the two files: no temporary file left.
+        assert_eq!(
+            std::fs::read_dir(&d).unwrap().count(),
+            1 + cfg!(unix) as usize
+        );
         std::fs::remove_dir_all(&d).unwrap();
     }
 
