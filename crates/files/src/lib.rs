@@ -321,6 +321,40 @@ pub fn read_limited(path: &Path, limit: u64) -> Result<Vec<u8>> {
     Ok(bytes)
 }
 
+/// As [`read_limited`], but the whole file only if it starts with one of `starts` (a format's
+/// magic bytes): otherwise only its first bytes (as many as the longest of `starts`), on which
+/// the caller's decoder gives its own error at once, without reading a large file that is not
+/// of its format.
+///
+/// # Errors
+/// As [`read_limited`].
+pub fn read_limited_if_starts(path: &Path, limit: u64, starts: &[&[u8]]) -> Result<Vec<u8>> {
+    let head_len = starts.iter().map(|s| s.len()).max().unwrap_or(0) as u64;
+    let mut head = read_head(path, head_len.min(limit))?;
+    if starts.iter().any(|s| head.starts_with(s)) {
+        head = read_limited(path, limit)?;
+    }
+    Ok(head)
+}
+
+/// The first `n` bytes of the regular file `path` (fewer if it is shorter).
+fn read_head(path: &Path, n: u64) -> Result<Vec<u8>> {
+    let meta = std::fs::metadata(path).map_err(io(path, "read"))?;
+    if !meta.is_file() {
+        return Err(FileError::NotRegular {
+            path: path.display().to_string(),
+            kind: kind(&meta),
+            why: "only regular files are read",
+        });
+    }
+    let file = std::fs::File::open(path).map_err(io(path, "read"))?;
+    let mut head = Vec::new();
+    file.take(n)
+        .read_to_end(&mut head)
+        .map_err(io(path, "read"))?;
+    Ok(head)
+}
+
 /// As [`read_limited`], as UTF-8 text.
 ///
 /// # Errors
@@ -344,6 +378,23 @@ pub fn read_text_limited(path: &Path, limit: u64) -> Result<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A file that does not start with the format's magic is read no further than it.
+    #[test]
+    fn a_file_of_another_format_is_not_read_whole() {
+        let d = std::env::temp_dir().join(format!("osrl-files-head-{}", std::process::id()));
+        std::fs::create_dir_all(&d).unwrap();
+        let (ours, other) = (d.join("ours"), d.join("other"));
+        std::fs::write(&ours, b"MAGICrest of it").unwrap();
+        std::fs::write(&other, b"NOTMAGIC and much more").unwrap();
+        let starts: &[&[u8]] = &[b"MAGIC", b"OLD"];
+        let read = |p: &Path, limit| read_limited_if_starts(p, limit, starts);
+        assert_eq!(read(&ours, 100).unwrap(), b"MAGICrest of it");
+        assert_eq!(read(&other, 100).unwrap(), b"NOTMA");
+        assert!(matches!(read(&ours, 10), Err(FileError::TooLarge { .. })));
+        assert!(matches!(read(&d, 10), Err(FileError::NotRegular { .. })));
+        std::fs::remove_dir_all(&d).unwrap();
+    }
 
     /// An output that is an input under any of its names is refused; others pass.
     #[cfg(unix)]

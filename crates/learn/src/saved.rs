@@ -340,7 +340,8 @@ impl SavedModel {
     /// # Errors
     /// As [`SavedModel::from_bytes`], the message starting with the path.
     pub fn load(path: &Path) -> Result<Self> {
-        let bytes = osrl_files::read_limited(path, MAX_MODEL_BYTES)?;
+        let starts: &[&[u8]] = &[MODEL_MAGIC, OLD_LEARNER_MAGIC];
+        let bytes = osrl_files::read_limited_if_starts(path, MAX_MODEL_BYTES, starts)?;
         Self::from_bytes(&bytes).map_err(|e| {
             let why = match e {
                 LearnError::Load(why) => why,

@@ -90,7 +90,8 @@ impl Lwpr {
 
     /// Reads a model saved by [`Lwpr::save`]. Any model in memory is unaffected by a failure.
     pub fn load(path: impl AsRef<Path>) -> Result<Lwpr, LwprError> {
-        Lwpr::from_bytes(&osrl_files::read_limited(path.as_ref(), MAX_MODEL_BYTES)?)
+        let bytes = osrl_files::read_limited_if_starts(path.as_ref(), MAX_MODEL_BYTES, &[MAGIC])?;
+        Lwpr::from_bytes(&bytes)
     }
 
     /// Checks sizes, finiteness and ids after decoding.
