@@ -48,7 +48,7 @@ pub use jacobian::{jacobian, jacobian_from_fk};
 pub use kinematics::{forward_kinematics, kinematics};
 pub use model::{
     Friction, JointKind, JointLimits, Link, LockedJoint, Model, ModelSpec, UrdfImport, GRAVITY,
-    MAX_DOF, MAX_JOINT_KD, MAX_JOINT_KP,
+    MAX_DOF, MAX_JOINT_KD, MAX_JOINT_KP, MAX_LENGTH, MAX_MASS,
 };
 pub use profile::{CostMetric, PathPlacement, RobotProfile};
 pub use rnea::{gravity, nonlinear_effects, rnea};

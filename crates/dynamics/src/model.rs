@@ -11,6 +11,12 @@ use serde::{Deserialize, Serialize};
 /// the controllers factor it, so an absurd size is refused before anything is allocated.
 pub const MAX_DOF: usize = 1024;
 
+/// Largest offset of a link's joint, centre of mass or end-effector from its parent (m, per
+/// coordinate): a kilometre, far beyond any arm; larger ones overflow the mass matrix.
+pub const MAX_LENGTH: f64 = 1e3;
+/// Largest mass of a link (kg): a thousand tonnes.
+pub const MAX_MASS: f64 = 1e6;
+
 /// Largest joint PD stiffness `K_Pq` (N·m/rad or N/m): a million, above the mechanical stiffness
 /// of a geared robot joint, which no position loop can exceed; larger gains only overflow the
 /// nominal command.
@@ -253,6 +259,12 @@ impl Model {
         }
         check_finite("gravity", spec.gravity.as_slice())?;
         check_finite("ee_offset", spec.ee_offset.as_slice())?;
+        if spec.ee_offset.amax() > MAX_LENGTH {
+            return bad(format!(
+                "ee_offset {:?} m lies beyond ±{MAX_LENGTH:?} m",
+                spec.ee_offset.as_slice()
+            ));
+        }
         if spec.task_axes.is_empty()
             || spec.task_axes.iter().any(|&a| a > 2)
             || (1..spec.task_axes.len()).any(|i| spec.task_axes[..i].contains(&spec.task_axes[i]))
@@ -272,6 +284,12 @@ impl Model {
             if all.iter().any(|s| s.iter().any(|x| !x.is_finite())) {
                 return bad(ctx("non-finite origin or axis"));
             }
+            if l.origin.trans.amax() > MAX_LENGTH {
+                return bad(ctx(&format!(
+                    "origin {:?} m lies beyond ±{MAX_LENGTH:?} m",
+                    l.origin.trans.as_slice()
+                )));
+            }
             if (l.origin.rot.transpose() * l.origin.rot - nalgebra::Matrix3::identity()).amax()
                 > 1e-9
                 || l.origin.rot.determinant() < 0.0
@@ -290,6 +308,15 @@ impl Model {
             if !fin || i.mass < 0.0 {
                 return bad(ctx(&format!(
                     "mass {} must be finite and non-negative",
+                    i.mass
+                )));
+            }
+            let (h_max, i_max) = (MAX_MASS * MAX_LENGTH, MAX_MASS * MAX_LENGTH * MAX_LENGTH);
+            if i.mass > MAX_MASS || i.h.amax() > h_max || i.inertia.amax() > i_max {
+                return bad(ctx(&format!(
+                    "mass {:?} kg, first moment or inertia beyond the bounds (mass ≤ \
+                     {MAX_MASS:?} kg, centre of mass within ±{MAX_LENGTH:?} m, inertia ≤ \
+                     {i_max:?} kg·m²)",
                     i.mass
                 )));
             }

@@ -173,3 +173,25 @@ fn round_off_in_a_point_mass_is_accepted_and_impossible_inertias_refused() {
         "{m}"
     );
 }
+
+/// Huge but finite geometry and masses are refused naming the link, instead of loading and
+/// then giving an infinite mass matrix.
+#[test]
+fn huge_lengths_and_masses_are_refused_by_link() {
+    let text = std::fs::read_to_string("tests/fixtures/planar3.urdf").unwrap();
+    osrl_dynamics::urdf::parse_urdf(&text).unwrap();
+    let far = text.replacen(
+        r#"<origin xyz="0.4 0.0 0.0""#,
+        r#"<origin xyz="1e200 0.0 0.0""#,
+        1,
+    );
+    let heavy = text.replacen(r#"<mass value="2.5"/>"#, r#"<mass value="1e300"/>"#, 1);
+    for (t, want) in [(far, "elbow_link"), (heavy, "shoulder_link")] {
+        assert_ne!(t, text);
+        let e = match parse_urdf(&t) {
+            Err(e) => e.to_string(),
+            Ok(m) => panic!("loaded {}", m.name()),
+        };
+        assert!(e.contains(want) && e.contains("beyond"), "{e}");
+    }
+}
