@@ -183,14 +183,14 @@ impl Setup {
         let dt = sim.control_period;
         if !CONTROL_PERIOD_RANGE.contains(&dt) {
             return Err(invalid(format!(
-                "[sim] control_period = {dt} s is not within {}–{} s",
+                "[sim] control_period = {dt:?} s is not within {}–{} s",
                 CONTROL_PERIOD_RANGE.start(),
                 CONTROL_PERIOD_RANGE.end()
             )));
         }
         if self.traj.steps_per_period(dt) < 2 {
             return Err(invalid(format!(
-                "[sim] control_period = {dt} s: fewer than two steps per trajectory period"
+                "[sim] control_period = {dt:?} s: fewer than two steps per trajectory period"
             )));
         }
         self.sim = sim;

@@ -79,7 +79,7 @@ fn effective_config(a: &Args, learned: Option<&SavedModel>) -> Result<Config> {
         let dt = cfg.sim.control_period;
         if dt != osrl_dynamics::SimConfig::default().control_period && dt != info.control_period {
             bail!(
-                "[sim] control_period = {dt} s: the learned controller was trained at {} s",
+                "[sim] control_period = {dt:?} s: the learned controller was trained at {} s",
                 info.control_period
             );
         }
