@@ -135,8 +135,9 @@ fn point(what: &str, p: &Vector3<f64>) -> Result<()> {
 /// through the ramp and sample whole cycles, so absurd durations would never finish.
 pub const MAX_PATH_SECONDS: f64 = 3600.0;
 
-/// Shortest period, move time or start ramp of a path (s): a millisecond, below any control
-/// period; shorter ones make the path's accelerations overflow (`a ω²` with `ω = 2π / period`).
+/// Shortest period, move time or start ramp of a path (s): a millisecond, far quicker than any
+/// arm moves; much shorter ones make the path's accelerations overflow (`a ω²` with
+/// `ω = 2π / period`).
 pub const MIN_PATH_SECONDS: f64 = 1e-3;
 
 /// `v` is a duration in `[MIN_PATH_SECONDS, MAX_PATH_SECONDS]` (or 0 with `zero_ok`).

@@ -56,8 +56,8 @@ use osrl_dynamics::{robots, Model, RobotProfile};
 pub const DEFAULT_FREQUENCY: f64 = 10.0;
 /// Default damping ratio `ζ` of the computed joint gains.
 pub const DEFAULT_DAMPING: f64 = 1.0;
-/// Largest `null_space_frequency` (rad/s): a joint time constant of 1 ms, shorter than any
-/// control period the computed gains could be run at.
+/// Largest `null_space_frequency` (rad/s): a joint time constant of 1 ms, a hundred times the
+/// default's bandwidth and beyond what a joint position loop realises.
 pub const MAX_FREQUENCY: f64 = 1e3;
 /// Largest `null_space_damping` (damping ratio `ζ`).
 pub const MAX_DAMPING: f64 = 1e3;
