@@ -293,14 +293,7 @@ fn probe_folder(dir: &Path) -> Result<()> {
 /// [`FileError::NotRegular`] for a directory, FIFO, device or socket (checked before opening
 /// it); [`FileError::TooLarge`] beyond `limit`; [`FileError::Io`] if it cannot be read.
 pub fn read_limited(path: &Path, limit: u64) -> Result<Vec<u8>> {
-    let meta = std::fs::metadata(path).map_err(io(path, "read"))?;
-    if !meta.is_file() {
-        return Err(FileError::NotRegular {
-            path: path.display().to_string(),
-            kind: kind(&meta),
-            why: "only regular files are read",
-        });
-    }
+    let (file, meta) = open_regular(path)?;
     let too_large = |size| FileError::TooLarge {
         path: path.display().to_string(),
         size,
@@ -309,7 +302,6 @@ pub fn read_limited(path: &Path, limit: u64) -> Result<Vec<u8>> {
     if meta.len() > limit {
         return Err(too_large(meta.len()));
     }
-    let file = std::fs::File::open(path).map_err(io(path, "read"))?;
     let mut bytes = Vec::with_capacity(meta.len() as usize);
     // A file that grew since: read one byte beyond the limit to notice.
     file.take(limit.saturating_add(1))
@@ -337,8 +329,9 @@ pub fn read_limited_if_starts(path: &Path, limit: u64, starts: &[&[u8]]) -> Resu
     Ok(head)
 }
 
-/// The first `n` bytes of the regular file `path` (fewer if it is shorter).
-fn read_head(path: &Path, n: u64) -> Result<Vec<u8>> {
+/// `path` opened for reading, with its metadata, if it is a regular file (symbolic links
+/// followed; checked before opening, so a FIFO is never opened).
+fn open_regular(path: &Path) -> Result<(std::fs::File, Metadata)> {
     let meta = std::fs::metadata(path).map_err(io(path, "read"))?;
     if !meta.is_file() {
         return Err(FileError::NotRegular {
@@ -348,6 +341,12 @@ fn read_head(path: &Path, n: u64) -> Result<Vec<u8>> {
         });
     }
     let file = std::fs::File::open(path).map_err(io(path, "read"))?;
+    Ok((file, meta))
+}
+
+/// The first `n` bytes of the regular file `path` (fewer if it is shorter).
+fn read_head(path: &Path, n: u64) -> Result<Vec<u8>> {
+    let (file, _) = open_regular(path)?;
     let mut head = Vec::new();
     file.take(n)
         .read_to_end(&mut head)
