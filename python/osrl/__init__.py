@@ -13,6 +13,7 @@ See python/README.md.
 """
 
 from ._osrl import (
+    MAX_BATCH_VALUES,
     MAX_NORMALISED,
     LearnedController,
     Learner,
@@ -29,6 +30,7 @@ __all__ = [
     "LearnedController",
     "Learner",
     "Lwpr",
+    "MAX_BATCH_VALUES",
     "MAX_NORMALISED",
     "Measurement",
     "NoSupportError",

@@ -231,3 +231,86 @@ def test_concurrent_call_during_a_batch_raises():
             break
     t.join()
     assert errors, "no call overlapped the batch"
+
+
+def _self_list():
+    lst = []
+    lst.append(lst)
+    return lst
+
+
+def _deep_list(depth):
+    v = [1.0]
+    for _ in range(depth):
+        v = [v]
+    return v
+
+
+class _ToListSelf:
+    """An array-like whose tolist() returns itself."""
+
+    def tolist(self):
+        return self
+
+
+@pytest.mark.parametrize("value, path", [
+    (_self_list(), "init_d[0][0]"),
+    (_deep_list(6000), "init_d[0][0]"),
+    (_ToListSelf(), "init_d:"),
+])
+def test_recursive_config_values_raise(value, path):
+    # These overflowed the stack (a segfault) before the conversion had a depth limit.
+    with pytest.raises(ValueError, match="nested more than 64") as e:
+        osrl.Lwpr(2, 1, init_d=value)
+    assert str(e.value).startswith(path)
+    # 64 levels are fine as far as nesting goes (the crate then refuses the value itself).
+    with pytest.raises(ValueError) as e:
+        osrl.Lwpr(2, 1, init_d=_deep_list(62))
+    assert "nested" not in str(e.value)
+
+
+@pytest.mark.parametrize("call", ["predict_batch", "update_batch"])
+def test_absurd_batch_sizes_raise_before_allocating(call):
+    m = trained()
+    before = m.to_bytes()
+    # A broadcast view costs nothing until copied; its copy (16 TB) aborted the process.
+    x = np.broadcast_to(np.zeros(2), (10**12, 2))
+    y = np.broadcast_to(np.zeros(2), (10**12, 2))
+    args = (x,) if call == "predict_batch" else (x, y)
+    with pytest.raises(ValueError, match=r"X: 1000000000000 rows × 2 columns .* smaller batches"):
+        getattr(m, call)(*args)
+    assert m.to_bytes() == before
+    assert osrl.MAX_BATCH_VALUES == 2**31
+    # Within the limit, broadcast views work as before.
+    small = np.broadcast_to(np.array([0.1, 0.2]), (5, 2))
+    assert getattr(m, call)(*((small,) if call == "predict_batch"
+                              else (small, np.zeros((5, 2))))).shape == (5, 2)
+
+
+def test_size_arguments_are_named():
+    with pytest.raises(ValueError, match=r"n_in = -1: expected an integer ≥ 0"):
+        osrl.Lwpr(-1, 1)
+    with pytest.raises(ValueError, match=r"n_out = -3"):
+        osrl.Lwpr(2, -3)
+    with pytest.raises(ValueError, match=r"n_out = 1000000000000000000000000"):
+        osrl.Lwpr(2, 10**24)
+    with pytest.raises(TypeError, match=r"n_in: expected an integer, got float 2.0"):
+        osrl.Lwpr(2.0, 1)
+    with pytest.raises(TypeError, match=r"n_out: expected an integer, got bool"):
+        osrl.Lwpr(2, True)
+    assert osrl.Lwpr(np.int64(2), np.uint8(1)).n_in == 2
+
+
+def test_update_returns_the_prediction_of_the_updated_fields():
+    m = trained(n=2000)
+    x = np.array([0.3, -0.2])
+    y = m.predict(x) + np.array([0.5, -0.5])  # a sample off the current prediction
+    before = m.predict(x)
+    returned = m.update(x, y)
+    after = m.predict(x)
+    # Not the prediction before learning: the updated fields have moved towards y already.
+    assert np.all(np.abs(returned - y) < np.abs(before - y))
+    assert not np.allclose(returned, before)
+    assert np.all(np.abs(returned - after) < np.abs(before - after))
+    doc = " ".join(osrl.Lwpr.update.__doc__.split())
+    assert "made before learning" not in doc and "after their update" in doc

@@ -8,7 +8,7 @@ use numpy::{
     IntoPyArray, PyArray1, PyArray2, PyArrayDyn, PyArrayMethods, PyReadonlyArray1, PyUntypedArray,
     PyUntypedArrayMethods,
 };
-use pyo3::exceptions::PyValueError;
+use pyo3::exceptions::{PyMemoryError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyList, PyTuple};
 
@@ -151,8 +151,11 @@ pub fn matrix(what: &str, obj: &Bound<'_, PyAny>, cols: usize) -> PyResult<Matri
             [n] if cols == 1 => n,
             _ => return Err(shape_err(format!("shape {}", shape_str(&shape)))),
         };
-        // Row-major whatever the strides (iteration is in logical order).
-        (rows, r.as_array().iter().copied().collect::<Vec<f64>>())
+        // Row-major whatever the strides (iteration is in logical order), into a buffer
+        // reserved first: a broadcast view of 10¹² rows is refused here, not by an abort.
+        let mut data = alloc(what, "copy", rows, cols)?;
+        data.extend(r.as_array().iter().copied());
+        (rows, data)
     } else if let Ok(a) = obj.cast::<PyUntypedArray>() {
         return Err(shape_err(describe(a)));
     } else if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() {
@@ -169,6 +172,36 @@ pub fn matrix(what: &str, obj: &Bound<'_, PyAny>, cols: usize) -> PyResult<Matri
         )));
     }
     Ok(Matrix { rows, cols, data })
+}
+
+/// Most values a batch may hold (its copy, or its result): 2³¹ float64 values, 16 GiB. Batches
+/// are copied whole (so that the GIL can be released while they run), so a larger one — most
+/// likely a broadcast view such as `np.broadcast_to(x, (10**12, n))`, which costs no memory
+/// until it is copied — is refused before anything is allocated; split it into smaller batches.
+pub const MAX_BATCH_VALUES: usize = 1 << 31;
+
+/// An empty buffer with room for `rows × cols` values, the `what` batch's `purpose` (`copy`,
+/// `result`): a `ValueError` beyond [`MAX_BATCH_VALUES`], a `MemoryError` if the allocation
+/// fails, both saying how large the batch is.
+pub fn alloc(what: &str, purpose: &str, rows: usize, cols: usize) -> PyResult<Vec<f64>> {
+    let values = rows
+        .checked_mul(cols)
+        .filter(|&v| v <= MAX_BATCH_VALUES)
+        .ok_or_else(|| {
+            PyValueError::new_err(format!(
+                "{what}: {rows} rows × {cols} columns is more than {MAX_BATCH_VALUES} values \
+                 (16 GiB of float64) for its {purpose}; split it into smaller batches"
+            ))
+        })?;
+    let mut v = Vec::new();
+    v.try_reserve_exact(values).map_err(|_| {
+        PyMemoryError::new_err(format!(
+            "{what}: cannot allocate {} MiB for the {purpose} of {rows} rows × {cols} columns; \
+             split it into smaller batches",
+            values * 8 >> 20
+        ))
+    })?;
+    Ok(v)
 }
 
 /// A list of rows (or, for one column, of numbers) as row-major values.

@@ -20,8 +20,20 @@ pub fn keys() -> Vec<String> {
     }
 }
 
+/// Deepest nesting of lists and dicts in a config value: the crates' configs nest a few levels
+/// (a dict of sections, a list of rows), so anything deeper is a mistake, most likely a list or
+/// dict that contains itself; the conversion recurses, and this bound keeps it off the end of
+/// the stack.
+pub const MAX_DEPTH: usize = 64;
+
 /// A Python value as JSON (dicts with string keys nest); `key` names it in errors.
 pub fn to_json(key: &str, v: &Bound<'_, PyAny>) -> PyResult<Value> {
+    to_json_at(key, v, 0)
+}
+
+/// [`to_json`] of a value nested `depth` lists, dicts or `tolist()` results deep; `key` is its
+/// path (`init_d[2][0]`, `learner config.guards.torque_limits`).
+fn to_json_at(key: &str, v: &Bound<'_, PyAny>, depth: usize) -> PyResult<Value> {
     if v.is_none() {
         return Ok(Value::Null);
     }
@@ -43,24 +55,43 @@ pub fn to_json(key: &str, v: &Bound<'_, PyAny>) -> PyResult<Value> {
     if v.is_instance_of::<PyString>() {
         return Ok(Value::String(v.extract()?));
     }
+    let nested = v.cast::<PyDict>().is_ok()
+        || v.is_instance_of::<PyList>()
+        || v.is_instance_of::<PyTuple>()
+        || v.hasattr("tolist")?;
+    if nested && depth >= MAX_DEPTH {
+        // The path of a cycle repeats itself: its start says where it is.
+        let path: String = match key.char_indices().nth(100) {
+            Some((cut, _)) => format!("{}…", &key[..cut]),
+            None => key.to_string(),
+        };
+        return Err(PyValueError::new_err(format!(
+            "{path}: nested more than {MAX_DEPTH} lists or dicts deep (a list or dict that \
+             contains itself, or an object whose tolist() returns itself?)"
+        )));
+    }
     if let Ok(d) = v.cast::<PyDict>() {
         let mut map = Map::new();
         for (k, item) in d.iter() {
             let name: String = k
                 .extract()
                 .map_err(|_| PyTypeError::new_err(format!("{key}: keys must be strings")))?;
-            let value = to_json(&format!("{key}.{name}"), &item)?;
+            let value = to_json_at(&format!("{key}.{name}"), &item, depth + 1)?;
             map.insert(name, value);
         }
         return Ok(Value::Object(map));
     }
     if v.is_instance_of::<PyList>() || v.is_instance_of::<PyTuple>() {
-        let items: PyResult<Vec<Value>> = v.try_iter()?.map(|i| to_json(key, &i?)).collect();
+        let items: PyResult<Vec<Value>> = v
+            .try_iter()?
+            .enumerate()
+            .map(|(i, item)| to_json_at(&format!("{key}[{i}]"), &item?, depth + 1))
+            .collect();
         return Ok(Value::Array(items?));
     }
     // numpy arrays and scalars (np.float64 is a float already; np.int64 and arrays are not).
     if v.hasattr("tolist")? {
-        return to_json(key, &v.call_method0("tolist")?);
+        return to_json_at(key, &v.call_method0("tolist")?, depth + 1);
     }
     Err(PyTypeError::new_err(format!(
         "{key}: unsupported value of type {}",

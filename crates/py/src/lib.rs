@@ -17,6 +17,7 @@
 // `PyResult` everywhere.
 #![allow(clippy::useless_conversion)]
 
+mod args;
 mod arrays;
 mod config;
 mod controller;
@@ -46,5 +47,6 @@ fn _osrl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     )?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("MAX_NORMALISED", ::lwpr::MAX_NORMALISED)?;
+    m.add("MAX_BATCH_VALUES", arrays::MAX_BATCH_VALUES)?;
     Ok(())
 }

@@ -4,7 +4,8 @@
 //! row first), so an exception leaves the model as it was. The single-sample calls keep the
 //! GIL (they take about a microsecond); batches, `save` and `load` release it.
 
-use crate::arrays::{matrix, out1, out2, read_into, Matrix};
+use crate::args::count;
+use crate::arrays::{alloc, matrix, out1, out2, read_into, Matrix};
 use crate::arrays::{Arr1, Arr2};
 use crate::config;
 use crate::errors::lwpr_err;
@@ -93,15 +94,21 @@ fn check_scale(
 impl PyLwpr {
     #[new]
     #[pyo3(signature = (n_in, n_out, **config))]
-    fn new(n_in: usize, n_out: usize, config: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
+    fn new(
+        n_in: &Bound<'_, PyAny>,
+        n_out: &Bound<'_, PyAny>,
+        config: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<Self> {
+        let (n_in, n_out) = (count("n_in", n_in)?, count("n_out", n_out)?);
         let cfg = config::from_kwargs(config)?;
         Ok(Self::wrap(
             Lwpr::new(n_in, n_out, &cfg).map_err(|e| lwpr_err(e, None))?,
         ))
     }
 
-    /// Learns from one sample; returns the prediction made before learning from it (NaN for
-    /// an output where no trustworthy receptive field was updated).
+    /// Learns from one sample; returns the prediction of the receptive fields it updated, after
+    /// their update (the reference library's `lwpr_update` `yp`; NaN for an output where no
+    /// trustworthy receptive field was updated): not the prediction before learning.
     fn update<'py>(
         &mut self,
         py: Python<'py>,
@@ -117,8 +124,9 @@ impl PyLwpr {
         Ok(out1(py, self.model.last_update_prediction()))
     }
 
-    /// Learns from the rows of `X` and `Y` in order; returns each update's prediction before
-    /// learning (rows of NaN where no trustworthy RF was updated). Releases the GIL.
+    /// Learns from the rows of `X` and `Y` in order; returns each update's prediction as
+    /// `update` does (rows of NaN where no trustworthy RF was updated). At most
+    /// `MAX_BATCH_VALUES` values. Releases the GIL.
     #[pyo3(name = "update_batch")]
     #[allow(non_snake_case)]
     fn update_batch<'py>(
@@ -131,9 +139,9 @@ impl PyLwpr {
         let x = matrix("X", X, n_in)?;
         let y = matrix("Y", Y, n_out)?;
         self.check_batch(&x, &y)?;
+        let mut pred = alloc("Y", "result", x.rows, n_out)?;
         let model = &mut self.model;
         let res = py.detach(|| {
-            let mut pred = Vec::with_capacity(x.rows * n_out);
             for i in 0..x.rows {
                 if let Err(e) = model.update(x.row(i), y.row(i)) {
                     return Err((i, e, pred));
@@ -172,7 +180,8 @@ impl PyLwpr {
         Ok(out1(py, &self.y))
     }
 
-    /// Predictions at the rows of `X`, shape `(N, n_out)`. Releases the GIL.
+    /// Predictions at the rows of `X`, shape `(N, n_out)`. At most `MAX_BATCH_VALUES` values.
+    /// Releases the GIL.
     #[pyo3(signature = (X, *, strict = true))]
     #[allow(non_snake_case)]
     fn predict_batch<'py>(
@@ -183,9 +192,10 @@ impl PyLwpr {
     ) -> PyResult<Arr2<'py>> {
         let (n_in, n_out) = (self.model.n_in(), self.model.n_out());
         let x = matrix("X", X, n_in)?;
+        let mut out = alloc("X", "result", x.rows, n_out)?;
+        out.resize(x.rows * n_out, 0.0);
         let model = &mut self.model;
         let res = py.detach(|| {
-            let mut out = vec![0.0; x.rows * n_out];
             let mut support = vec![0.0; n_out];
             for (i, y) in out.chunks_exact_mut(n_out.max(1)).enumerate() {
                 let r = if strict {
