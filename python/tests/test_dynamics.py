@@ -116,6 +116,46 @@ def test_construction_errors(tmp_path):
     with pytest.raises(ValueError, match="bad.urdf"):
         osrl.Robot.from_urdf(bad)
     text = osrl.Robot.builtin("planar3").to_urdf()
-    with pytest.raises(NotImplementedError, match="tip"):
-        osrl.Robot.from_urdf_string(text, tip="link3")
+    with pytest.raises(ValueError, match="'no_such_link'"):
+        osrl.Robot.from_urdf_string(text, tip="no_such_link")
     assert osrl.Robot.from_urdf_string(text, tip=None).dof == 3
+
+
+def test_urdf_tip_chooses_the_end_effector(tmp_path):
+    planar3 = osrl.Robot.builtin("planar3")
+    text = planar3.to_urdf()
+    path = tmp_path / "planar3.urdf"
+    path.write_text(text)
+    q = np.array([0.3, -0.5, 0.7])
+    # The export's ee_link is what the naming rule picks anyway.
+    for r in (osrl.Robot.from_urdf(path, tip="ee_link"),
+              osrl.Robot.from_urdf_string(text, tip="ee_link")):
+        assert r.dof == 3 and same(r.fk(q), planar3.fk(q))
+    # A link further up: the joints beyond it are locked, its origin is the end effector.
+    short = osrl.Robot.from_urdf(path, tip="elbow_link")
+    assert short.dof == 2 and short.joint_names == planar3.joint_names[:2]
+    assert not np.allclose(short.fk(q[:2]), planar3.fk(q))
+    with pytest.raises(ValueError, match=r"planar3.urdf: .*'nope'"):
+        osrl.Robot.from_urdf(path, tip="nope")
+
+
+@pytest.mark.parametrize("call, args, culprit", [
+    ("rnea", ("z", "big_qd", "z"), "qd"),
+    ("rnea", ("z", "z", "huge"), "qdd"),
+    ("aba", ("z", "z", "huge"), "tau"),
+    ("forward_dynamics", ("z", "big_qd", "z"), "qd"),
+    ("forward_dynamics", ("z", "z", "huge"), "u"),
+    ("nonlinear_effects", ("z", "big_qd"), "qd"),
+    ("kinematics", ("z", "big_qd"), "qd"),
+])
+def test_results_that_overflow_raise(call, args, culprit):
+    r = osrl.Robot.builtin("planar3")
+    values = {"z": np.zeros(3), "big_qd": np.full(3, 1e200), "huge": np.full(3, 1e308)}
+    # These returned NaN silently.
+    with pytest.raises(ValueError, match=rf"^{call}: the result is not finite .* most likely "
+                                         rf"through {culprit};"):
+        getattr(r, call)(*(values[a] for a in args))
+    # Large but representable inputs still give finite results.
+    ok = {"z": np.zeros(3), "big_qd": np.full(3, 1e100), "huge": np.full(3, 1e200)}
+    out = getattr(r, call)(*(ok[a] for a in args))
+    assert all(np.isfinite(o).all() for o in (out if isinstance(out, tuple) else (out,)))

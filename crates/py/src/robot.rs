@@ -3,11 +3,12 @@
 //! 9.81 m/s² along −z, `M(q) q̈ + h(q, q̇) = u` with `h = C q̇ + g + τ_f`; `rnea` and `aba` are
 //! rigid-body (no friction), `forward_dynamics` and `nonlinear_effects` include the friction.
 
+use crate::args::short;
 use crate::arrays::{out1, out2, vector};
 use crate::arrays::{Arr1, Arr2};
 use crate::errors::{dyn_err, file_err};
 use osrl_dynamics::{self as dynamics, robots, urdf, Data, Model};
-use pyo3::exceptions::PyNotImplementedError;
+use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use std::path::PathBuf;
 
@@ -29,17 +30,54 @@ impl PyRobot {
     }
 }
 
-/// `tip` is accepted for the interface of issue 29; the dynamics crate takes the URDF's
-/// deepest link as the end effector and has no option to choose another yet.
-fn refuse_tip(tip: Option<String>) -> PyResult<()> {
-    match tip {
-        None => Ok(()),
-        Some(t) => Err(PyNotImplementedError::new_err(format!(
-            "tip={t:?}: osrl-dynamics does not choose the end-effector link yet (it takes the \
-             deepest link of the chain, a fixed `ee` link after the last joint if there is \
-             one); omit tip"
-        ))),
+/// The loader's options for `tip` (`None`: the loader's naming rule chooses the end effector).
+fn urdf_options(tip: Option<String>) -> urdf::UrdfOptions {
+    urdf::UrdfOptions {
+        tip,
+        ..urdf::UrdfOptions::default()
     }
+}
+
+/// `Ok` if every value of the results `outs` (name, values) of `func` is finite; otherwise a
+/// `ValueError` naming `func`, the first value that is not, and the input most likely to have
+/// overflowed the computation. The inputs are finite (checked by the crate), so a result that
+/// is not comes from an overflow: velocities enter squared (Coriolis and centrifugal terms,
+/// `J̇ q̇`), positions through sines and cosines (revolute) or linearly and squared
+/// (prismatic), accelerations and torques linearly; the likely culprit is the input with the
+/// largest magnitude on that scale.
+fn finite_result(func: &str, outs: &[(&str, &[f64])], inputs: &[(&str, &[f64])]) -> PyResult<()> {
+    let Some((name, i, v)) = outs.iter().find_map(|(name, vals)| {
+        vals.iter()
+            .position(|v| !v.is_finite())
+            .map(|i| (name, i, vals[i]))
+    }) else {
+        return Ok(());
+    };
+    let amax = |x: &[f64]| x.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
+    let squared = |input: &str| matches!(input, "q" | "qd");
+    let scale = |(input, x): &(&str, &[f64])| {
+        let a = amax(x);
+        if squared(input) {
+            a * a
+        } else {
+            a
+        }
+    };
+    let sizes: Vec<String> = inputs
+        .iter()
+        .map(|(input, x)| format!("max |{input}| = {}", short(amax(x))))
+        .collect();
+    let culprit = inputs
+        .iter()
+        .max_by(|a, b| scale(a).total_cmp(&scale(b)))
+        .map(|(input, _)| *input)
+        .unwrap_or("?");
+    Err(PyValueError::new_err(format!(
+        "{func}: the result is not finite ({name}[{i}] = {v}): the computation overflowed float64 \
+         with these inputs ({}), most likely through {culprit}; the inputs must be physically \
+         plausible",
+        sizes.join(", ")
+    )))
 }
 
 /// The columns of a column-major 3×n or n×n matrix as a row-major copy.
@@ -64,26 +102,26 @@ impl PyRobot {
         robots::BUILTIN.to_vec()
     }
 
-    /// A robot from a URDF file (a serial chain of revolute joints; fixed joints are folded in).
+    /// A robot from a URDF file (the chain from the root to the end-effector link `tip`; `None`:
+    /// the loader's naming rule chooses it).
     #[staticmethod]
     #[pyo3(signature = (path, tip = None))]
     fn from_urdf(path: PathBuf, tip: Option<String>) -> PyResult<Self> {
-        refuse_tip(tip)?;
         // A regular file within the URDF size limit (a FIFO would block).
         let text =
             osrl_files::read_text_limited(&path, urdf::MAX_URDF_BYTES as u64).map_err(file_err)?;
-        let model = urdf::parse_urdf(&text).map_err(|e| {
-            pyo3::exceptions::PyValueError::new_err(format!("{}: {e}", path.display()))
-        })?;
+        let model = urdf::parse_urdf_with(&text, &urdf_options(tip))
+            .map_err(|e| PyValueError::new_err(format!("{}: {e}", path.display())))?;
         Ok(Self::wrap(model))
     }
 
-    /// A robot from URDF text.
+    /// A robot from URDF text (`tip` as for `from_urdf`).
     #[staticmethod]
     #[pyo3(signature = (text, tip = None))]
     fn from_urdf_string(text: &str, tip: Option<String>) -> PyResult<Self> {
-        refuse_tip(tip)?;
-        Ok(Self::wrap(urdf::parse_urdf(text).map_err(dyn_err)?))
+        Ok(Self::wrap(
+            urdf::parse_urdf_with(text, &urdf_options(tip)).map_err(dyn_err)?,
+        ))
     }
 
     /// The model as URDF text (what `osrl robot --robot NAME --urdf` prints).
@@ -163,6 +201,11 @@ impl PyRobot {
     fn fk<'py>(&mut self, py: Python<'py>, q: &Bound<'py, PyAny>) -> PyResult<Arr1<'py>> {
         let q = vector("q", q)?;
         dynamics::forward_kinematics(&self.model, &mut self.data, q.as_slice()).map_err(dyn_err)?;
+        finite_result(
+            "fk",
+            &[("x", self.data.ee_pos.as_slice())],
+            &[("q", q.as_slice())],
+        )?;
         Ok(out1(py, self.data.ee_pos.as_slice()))
     }
 
@@ -178,6 +221,15 @@ impl PyRobot {
         dynamics::kinematics(&self.model, &mut self.data, q.as_slice(), qd.as_slice())
             .map_err(dyn_err)?;
         let d = &self.data;
+        finite_result(
+            "kinematics",
+            &[
+                ("x", d.ee_pos.as_slice()),
+                ("xd", d.ee_vel.as_slice()),
+                ("jdot_qd", d.jdot_qd.as_slice()),
+            ],
+            &[("q", q.as_slice()), ("qd", qd.as_slice())],
+        )?;
         Ok((
             out1(py, d.ee_pos.as_slice()),
             out1(py, d.ee_vel.as_slice()),
@@ -189,7 +241,9 @@ impl PyRobot {
     fn jacobian<'py>(&mut self, py: Python<'py>, q: &Bound<'py, PyAny>) -> PyResult<Arr2<'py>> {
         let q = vector("q", q)?;
         dynamics::jacobian(&self.model, &mut self.data, q.as_slice()).map_err(dyn_err)?;
-        Ok(out2(py, 3, self.n(), rows_of(&self.data.jac)))
+        let jac = rows_of(&self.data.jac);
+        finite_result("jacobian", &[("J", &jac)], &[("q", q.as_slice())])?;
+        Ok(out2(py, 3, self.n(), jac))
     }
 
     /// Joint-space mass matrix `M(q)` (kg·m²), shape `(n, n)` (CRBA).
@@ -197,13 +251,16 @@ impl PyRobot {
         let q = vector("q", q)?;
         let n = self.n();
         let m = dynamics::crba(&self.model, &mut self.data, q.as_slice()).map_err(dyn_err)?;
-        Ok(out2(py, n, n, rows_of(m)))
+        let m = rows_of(m);
+        finite_result("mass_matrix", &[("M", &m)], &[("q", q.as_slice())])?;
+        Ok(out2(py, n, n, m))
     }
 
     /// Gravity torques `g(q)` (N·m).
     fn gravity<'py>(&mut self, py: Python<'py>, q: &Bound<'py, PyAny>) -> PyResult<Arr1<'py>> {
         let q = vector("q", q)?;
         let g = dynamics::gravity(&self.model, &mut self.data, q.as_slice()).map_err(dyn_err)?;
+        finite_result("gravity", &[("g", g.as_slice())], &[("q", q.as_slice())])?;
         Ok(out1(py, g.as_slice()))
     }
 
@@ -218,6 +275,11 @@ impl PyRobot {
         let h =
             dynamics::nonlinear_effects(&self.model, &mut self.data, q.as_slice(), qd.as_slice())
                 .map_err(dyn_err)?;
+        finite_result(
+            "nonlinear_effects",
+            &[("h", h.as_slice())],
+            &[("q", q.as_slice()), ("qd", qd.as_slice())],
+        )?;
         Ok(out1(py, h.as_slice()))
     }
 
@@ -227,6 +289,7 @@ impl PyRobot {
         dynamics::check_vec("qd", qd.as_slice(), self.n()).map_err(dyn_err)?;
         let mut f = vec![0.0; self.n()];
         self.model.friction(qd.as_slice(), &mut f);
+        finite_result("friction", &[("tau_f", &f)], &[("qd", qd.as_slice())])?;
         Ok(out1(py, &f))
     }
 
@@ -247,6 +310,15 @@ impl PyRobot {
             qdd.as_slice(),
         )
         .map_err(dyn_err)?;
+        finite_result(
+            "rnea",
+            &[("tau", tau.as_slice())],
+            &[
+                ("q", q.as_slice()),
+                ("qd", qd.as_slice()),
+                ("qdd", qdd.as_slice()),
+            ],
+        )?;
         Ok(out1(py, tau.as_slice()))
     }
 
@@ -267,6 +339,15 @@ impl PyRobot {
             tau.as_slice(),
         )
         .map_err(dyn_err)?;
+        finite_result(
+            "aba",
+            &[("qdd", qdd.as_slice())],
+            &[
+                ("q", q.as_slice()),
+                ("qd", qd.as_slice()),
+                ("tau", tau.as_slice()),
+            ],
+        )?;
         Ok(out1(py, qdd.as_slice()))
     }
 
@@ -287,6 +368,15 @@ impl PyRobot {
             u.as_slice(),
         )
         .map_err(dyn_err)?;
+        finite_result(
+            "forward_dynamics",
+            &[("qdd", qdd.as_slice())],
+            &[
+                ("q", q.as_slice()),
+                ("qd", qd.as_slice()),
+                ("u", u.as_slice()),
+            ],
+        )?;
         Ok(out1(py, qdd.as_slice()))
     }
 
