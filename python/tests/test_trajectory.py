@@ -50,3 +50,17 @@ def test_bad_arguments_raise():
     traj = osrl.Trajectory("planar3")
     with pytest.raises(ValueError, match="finite"):
         traj.sample(float("nan"))
+
+
+def test_kind_from_the_config_is_used():
+    # The keyword's default used to override the config's kind (a figure-8 for "circle").
+    from_config = osrl.Trajectory("planar3", config={"kind": "circle"})
+    circle, figure8 = osrl.Trajectory("planar3", "circle"), osrl.Trajectory("planar3")
+    t = circle.ramp + 0.3 * circle.period
+    assert np.array_equal(from_config.sample(t)[0], circle.sample(t)[0])
+    assert not np.allclose(figure8.sample(t)[0], circle.sample(t)[0])
+    same = osrl.Trajectory("planar3", "circle", config={"kind": "circle"})
+    assert np.array_equal(same.sample(t)[0], circle.sample(t)[0])
+    with pytest.raises(ValueError, match=r"kind=\"figure8\" and config\['kind'\] = \"circle\" "
+                                         r"disagree"):
+        osrl.Trajectory("planar3", "figure8", config={"kind": "circle"})

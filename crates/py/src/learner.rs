@@ -2,13 +2,15 @@
 //! (`osrl_learn::Learner`) stepped from Python — commands for a reference acceleration, and
 //! learning from each transition between two measurements.
 
+use crate::args::{self, count, short};
 use crate::arrays::out1;
 use crate::config::from_dict;
 use crate::errors::learn_err;
 use crate::meas::{read_all, read_checked, zeros};
 use numpy::PyArray1;
 use osrl_dynamics::Measurement;
-use osrl_learn::{load_robot, Learner, LearnerConfig};
+use osrl_learn::{load_robot, Learner, LearnerConfig, CONTROL_PERIOD_RANGE};
+use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -48,18 +50,45 @@ pub fn learner_config(
     Ok(cfg)
 }
 
+/// `Ok` if `dt` (named `what`) is a control period a saved model accepts
+/// (`osrl_learn::CONTROL_PERIOD_RANGE`, 0.1 ms to 100 ms): a learner outside it could neither be
+/// saved nor learn sensibly (its rates and time constants are per control period).
+pub fn check_control_period(what: &str, dt: f64) -> PyResult<()> {
+    let r = &CONTROL_PERIOD_RANGE;
+    if r.contains(&dt) {
+        return Ok(());
+    }
+    Err(PyValueError::new_err(format!(
+        "{what} = {} s: must be within [{}, {}] s, the range a saved model accepts",
+        short(dt),
+        short(*r.start()),
+        short(*r.end())
+    )))
+}
+
+/// How far the time between two measurements given to `learn` may be from the control period,
+/// as a fraction of it. The learner takes each transition as one control period under the held
+/// command; half a period tells the next measurement (one period on) from the same one (0) or
+/// one after a missed step (2 periods), and leaves room for a real robot's timing jitter and
+/// for a time summed up from rounded periods.
+pub const PERIOD_TOLERANCE: f64 = 0.5;
+
 #[pymethods]
 impl PyLearner {
     #[new]
-    #[pyo3(signature = (dof, task_dim, control_period, robot = None, config = None, seed = 0))]
+    #[pyo3(signature = (dof, task_dim, control_period, robot = None, config = None, seed = None))]
     fn new(
-        dof: usize,
-        task_dim: usize,
+        dof: &Bound<'_, PyAny>,
+        task_dim: &Bound<'_, PyAny>,
         control_period: f64,
         robot: Option<&str>,
         config: Option<&Bound<'_, PyAny>>,
-        seed: u64,
+        seed: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
+        let (dof, task_dim) = (count("dof", dof)?, count("task_dim", task_dim)?);
+        // `None`: the default seed, 0.
+        let seed = seed.map_or(Ok(0), |s| args::seed("seed", s))?;
+        check_control_period("control_period", control_period)?;
         let cfg = learner_config(config, robot)?;
         let learner = Learner::new(dof, task_dim, control_period, cfg).map_err(learn_err)?;
         Ok(Self {
@@ -83,8 +112,12 @@ impl PyLearner {
         qd: &Bound<'py, PyAny>,
         xdd_ref: &Bound<'py, PyAny>,
         explore: bool,
-        seed: Option<u64>,
+        seed: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let seed = seed
+            .filter(|s| !s.is_none())
+            .map(|s| args::seed("seed", s))
+            .transpose()?;
         let (n, m) = self.learner.dims();
         read_checked("q", q, n, &mut self.q)?;
         read_checked("qd", qd, n, &mut self.qd)?;
@@ -99,10 +132,34 @@ impl PyLearner {
         Ok(out1(py, &self.u))
     }
 
-    /// Learns from the transition `prev → cur` (two `osrl.Measurement`s; `cur.u` was held).
+    /// Learns from the transition `prev → cur` (two `osrl.Measurement`s; `cur.u` was held);
+    /// `cur` must be one control period after `prev` (within [`PERIOD_TOLERANCE`]).
     fn learn(&mut self, prev: &Bound<'_, PyAny>, cur: &Bound<'_, PyAny>) -> PyResult<()> {
         read_all(prev, "prev", &mut self.prev, &mut self.q)?;
         read_all(cur, "cur", &mut self.cur, &mut self.q)?;
+        let dt = self.learner.control_period();
+        let (t0, t1) = (self.prev.t, self.cur.t);
+        let gap = t1 - t0;
+        if !((gap - dt).abs() <= PERIOD_TOLERANCE * dt) {
+            let why = if gap <= 0.0 {
+                "time does not advance (is prev the measurement before cur?)".to_string()
+            } else {
+                format!(
+                    "{:.3} control periods apart: learn takes consecutive measurements (the \
+                     previous cur as prev; after a reset, the reset's measurement)",
+                    gap / dt
+                )
+            };
+            return Err(PyValueError::new_err(format!(
+                "learn(prev, cur): cur.t − prev.t = {} − {} = {} s, but the control period is \
+                 {} s (±{:.0} %): {why}; nothing was learned",
+                short(t1),
+                short(t0),
+                short(gap),
+                short(dt),
+                PERIOD_TOLERANCE * 100.0
+            )));
+        }
         self.learner.learn(&self.prev, &self.cur).map_err(learn_err)
     }
 
@@ -113,9 +170,7 @@ impl PyLearner {
             None => self.learner.start_episode(None).map_err(learn_err),
             Some(u) => {
                 read_checked("last_sent", u, self.learner.dims().0, &mut self.q)?;
-                self.learner
-                    .start_episode(Some(&self.q))
-                    .map_err(learn_err)
+                self.learner.start_episode(Some(&self.q)).map_err(learn_err)
             }
         }
     }

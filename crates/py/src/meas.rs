@@ -5,7 +5,7 @@
 use crate::arrays::read_into;
 use nalgebra::DVector;
 use osrl_dynamics::Measurement;
-use pyo3::exceptions::PyValueError;
+use pyo3::exceptions::{PyAttributeError, PyValueError};
 use pyo3::intern;
 use pyo3::prelude::*;
 
@@ -45,6 +45,27 @@ pub fn zeros(n: usize, m: usize) -> Measurement {
     }
 }
 
+/// Attribute `name` of `obj`. A missing attribute (`AttributeError`) is a `ValueError` saying
+/// that `what` is not a measurement (the `AttributeError` as its cause); any other exception
+/// raised while getting it (a property that fails) is the object's own and propagates as it is.
+pub fn attr<'py>(
+    obj: &Bound<'py, PyAny>,
+    what: &str,
+    name: &Bound<'py, pyo3::types::PyString>,
+) -> PyResult<Bound<'py, PyAny>> {
+    obj.getattr(name).map_err(|e| {
+        let py = obj.py();
+        if !e.is_instance_of::<PyAttributeError>(py) {
+            return e;
+        }
+        let err = PyValueError::new_err(format!(
+            "{what}: expected an osrl.Measurement, it has no `{name}`"
+        ));
+        err.set_cause(py, Some(e));
+        err
+    })
+}
+
 /// Reads attribute `name` of `obj` (`what.name` in errors) into `dst`, through `buf`.
 fn field(
     obj: &Bound<'_, PyAny>,
@@ -53,11 +74,7 @@ fn field(
     dst: &mut DVector<f64>,
     buf: &mut Vec<f64>,
 ) -> PyResult<()> {
-    let v = obj.getattr(name).map_err(|_| {
-        PyValueError::new_err(format!(
-            "{what}: expected an osrl.Measurement, it has no `{name}`"
-        ))
-    })?;
+    let v = attr(obj, what, name)?;
     read_checked(&format!("{what}.{name}"), &v, dst.len(), buf)?;
     dst.copy_from_slice(buf);
     Ok(())
@@ -100,10 +117,16 @@ pub fn read_all(
     read_state(obj, what, dst, buf)?;
     field(obj, what, intern!(py, "xdd"), &mut dst.xdd, buf)?;
     field(obj, what, intern!(py, "u"), &mut dst.u, buf)?;
-    let t: f64 = obj
-        .getattr(intern!(py, "t"))
-        .and_then(|t| t.extract())
-        .map_err(|_| PyValueError::new_err(format!("{what}.t: expected a number")))?;
+    let t = attr(obj, what, intern!(py, "t"))?;
+    let t: f64 = t.extract().map_err(|e| {
+        let ty = t
+            .get_type()
+            .name()
+            .map_or_else(|_| "?".to_string(), |n| n.to_string());
+        let err = PyValueError::new_err(format!("{what}.t: expected a number, got {ty}"));
+        err.set_cause(py, Some(e));
+        err
+    })?;
     if !t.is_finite() {
         return Err(PyValueError::new_err(format!(
             "{what}.t = {t} is not finite"

@@ -10,6 +10,7 @@ use osrl_control::{Trajectory, TrajectoryConfig};
 use osrl_experiments::Setup;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
+use pyo3::types::PyDict;
 
 /// A trajectory of osrl's model of a robot, on its task axes (see `_osrl.pyi`).
 #[pyclass(name = "Trajectory", module = "osrl", frozen)]
@@ -29,15 +30,46 @@ pub fn set_kind(traj: &mut TrajectoryConfig, kind: &str) -> PyResult<()> {
     Ok(())
 }
 
+/// `kind` (the keyword argument `kw`) into `traj`; when the config gave a kind too
+/// (`in_config`, at `where_` + `['kind']`), the two must be the same.
+pub fn merge_kind(
+    traj: &mut TrajectoryConfig,
+    kind: &str,
+    in_config: bool,
+    kw: &str,
+    where_: &str,
+) -> PyResult<()> {
+    let given = traj.kind;
+    set_kind(traj, kind)?;
+    if in_config && traj.kind != given {
+        let name = serde_json::to_value(given)
+            .ok()
+            .and_then(|v| v.as_str().map(String::from))
+            .unwrap_or_else(|| format!("{given:?}"));
+        return Err(PyValueError::new_err(format!(
+            "{kw}={kind:?} and config{where_}['kind'] = {name:?} disagree: give it once (or the \
+             same value in both)"
+        )));
+    }
+    Ok(())
+}
+
 #[pymethods]
 impl PyTrajectory {
     /// The trajectory `osrl.train(robot, kind, config={"trajectory": config})` uses for osrl's
-    /// model `robot` (a built-in name or a URDF path).
+    /// model `robot` (a built-in name or a URDF path). `kind` defaults to the config's `kind`
+    /// (itself figure8 by default); given in both, they must agree.
     #[new]
-    #[pyo3(signature = (robot, kind = "figure8", config = None))]
-    fn new(robot: &str, kind: &str, config: Option<&Bound<'_, PyAny>>) -> PyResult<Self> {
+    #[pyo3(signature = (robot, kind = None, config = None))]
+    fn new(robot: &str, kind: Option<&str>, config: Option<&Bound<'_, PyAny>>) -> PyResult<Self> {
         let mut cfg: TrajectoryConfig = from_dict("trajectory config", config)?;
-        set_kind(&mut cfg, kind)?;
+        if let Some(kind) = kind {
+            let in_config = match config.and_then(|c| c.cast::<PyDict>().ok()) {
+                Some(d) => d.contains("kind")?,
+                None => false,
+            };
+            merge_kind(&mut cfg, kind, in_config, "kind", "")?;
+        }
         let setup = Setup::along(robot, cfg).map_err(setup_err)?;
         Ok(Self {
             traj: setup.trajectory().clone(),
