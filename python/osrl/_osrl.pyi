@@ -19,6 +19,11 @@ Path = Union[str, "PathLike[str]"]
 __version__: str
 MAX_NORMALISED: float
 """Largest magnitude of a normalised input or output that ``Lwpr.update`` accepts (1e40)."""
+MAX_BATCH_VALUES: int
+"""Most values (rows × columns) of a batch's copy or result that ``Lwpr.update_batch`` and
+``Lwpr.predict_batch`` take: 2**31 float64 values, 16 GiB. A larger batch (e.g. a broadcast view
+``np.broadcast_to(x, (10**12, n))``) raises ``ValueError`` before anything is allocated, and an
+allocation within it that fails raises ``MemoryError``; split large batches."""
 
 class NoSupportError(ValueError):
     """No trustworthy receptive field is active at this input (for some output)."""
@@ -36,7 +41,10 @@ class Lwpr:
     ("gaussian" | "bisquare"), ``norm_in``, ``norm_out`` (number or one per dimension; "std"
     must be resolved by the caller, e.g. ``norm_in=X.std(axis=0)``), ``cutoff``,
     ``shared_rfs``, ``kernel_dims``, ``regression_dims``. An unknown key raises ``TypeError``,
-    a bad value ``ValueError``.
+    a bad value ``ValueError``. A config value nested more than 64 lists or dicts deep (a list
+    that contains itself) raises ``ValueError`` naming its key path. ``n_in`` and ``n_out`` are
+    integers ≥ 0 (``ValueError`` naming the argument for a negative one, ``TypeError`` for a
+    float).
 
     Single-sample calls hold the GIL (about a microsecond each); batches, ``save`` and
     ``load`` release it. Not for concurrent use from several threads (a second call while one
@@ -46,21 +54,26 @@ class Lwpr:
     def __init__(self, n_in: int, n_out: int, **config: Any) -> None: ...
     def update(self, x: ArrayLike1, y: ArrayLike1) -> Array:
         """Learns from one sample (``x``: ``(n_in,)``, ``y``: ``(n_out,)``); returns the
-        prediction made before learning from it, ``(n_out,)`` (NaN for an output where no
-        trustworthy receptive field was updated). Raises ``ValueError`` (nothing learned) on a
+        prediction of the receptive fields this sample updated, after their update, ``(n_out,)``
+        (the reference library's ``lwpr_update`` ``yp``: each trustworthy updated field's
+        prediction once its regression has learned from the sample, blended by the activations;
+        NaN for an output where no trustworthy receptive field was updated). It is not the
+        prediction before learning (``predict(x)`` before the call): it is already pulled
+        towards ``y``. Raises ``ValueError`` (nothing learned) on a
         bad shape or dtype, a non-finite value, or a value beyond ``MAX_NORMALISED`` once
         divided by its normalisation."""
     def update_batch(self, X: ArrayLike2, Y: ArrayLike2) -> Array:
         """Learns from the rows of ``X`` ``(N, n_in)`` and ``Y`` ``(N, n_out)`` (a 1-D ``Y``
-        when ``n_out == 1``) in order, the same as ``update`` row by row; returns the
-        predictions before learning, ``(N, n_out)``. The whole batch is checked first: an
-        error learns nothing."""
+        when ``n_out == 1``) in order, the same as ``update`` row by row; returns each update's
+        prediction as ``update`` does, ``(N, n_out)``. The whole batch is checked first: an
+        error learns nothing. At most ``MAX_BATCH_VALUES`` values per batch."""
     def predict(self, x: ArrayLike1, *, strict: bool = True) -> Array:
         """The prediction at ``x``, ``(n_out,)``. Raises ``NoSupportError`` where no
         trustworthy receptive field is active, unless ``strict=False`` (then 0 for that
         output, as the reference library does)."""
     def predict_batch(self, X: ArrayLike2, *, strict: bool = True) -> Array:
-        """``predict`` of every row of ``X`` ``(N, n_in)``: ``(N, n_out)``."""
+        """``predict`` of every row of ``X`` ``(N, n_in)``: ``(N, n_out)``. At most
+        ``MAX_BATCH_VALUES`` values per batch (its copy and its result)."""
     def predict_conf(self, x: ArrayLike1) -> Tuple[Array, Array]:
         """``(y, conf)``: the prediction and its confidence bound per output (output units,
         the reference library's ``sqrt(Σ w σ²_k + Σ w (ŷ_k − ŷ)²) / Σ w``)."""
@@ -101,6 +114,10 @@ class Robot:
     robot or a URDF, with its dynamics on numpy arrays. World frame z up, gravity 9.81 m/s²
     along −z; ``M(q) q̈ + h(q, q̇) = u`` with ``h = C q̇ + g + τ_f``. The end effector is the
     task point; ``task_axes`` are the world axes of its position that form the task space.
+
+    Every method raises ``ValueError`` for a result that is not finite (inputs so large that the
+    computation overflows float64, e.g. ``rnea(q, np.full(n, 1e200), qdd)``), naming the method
+    and the input most likely to blame, instead of returning NaN or inf.
     """
 
     @staticmethod
@@ -111,11 +128,15 @@ class Robot:
     def builtins() -> List[str]: ...
     @staticmethod
     def from_urdf(path: Path, tip: Optional[str] = None) -> "Robot":
-        """A robot from a URDF file (revolute and continuous joints; fixed joints folded in;
-        the deepest link's origin is the end effector). ``tip`` (choosing the end-effector
-        link) is not supported yet: ``NotImplementedError`` unless ``None``."""
+        """A robot from a URDF file: the serial chain from the root to the end-effector link
+        ``tip`` (its origin is the task point; the joints beyond it and off the chain are held
+        rigid). ``tip=None``: the loader's naming rule chooses it (``tcp``, ``ee_link``,
+        ``tool0``, ... as in ``osrl robot --urdf F``; else the link moved by the last joint),
+        as ``osrl``'s ``--tip`` does. ``ValueError`` naming the file for an invalid URDF or a
+        ``tip`` that is not one of its links; ``OSError`` for the file system."""
     @staticmethod
-    def from_urdf_string(text: str, tip: Optional[str] = None) -> "Robot": ...
+    def from_urdf_string(text: str, tip: Optional[str] = None) -> "Robot":
+        """``from_urdf`` of URDF text."""
     def to_urdf(self) -> str:
         """The model as URDF (what ``osrl robot --robot NAME --urdf`` prints)."""
     @property
@@ -188,7 +209,10 @@ class LearnedController:
         ``xd`` of shape ``(task_dim,)``, and ``xdd``, the measured task acceleration under the
         last command, when ``observer`` is on) and the target position, velocity and acceleration
         on the task axes (each ``(task_dim,)``). Bad inputs raise ``ValueError`` and change
-        nothing. Allocation-free in Rust (only the returned array is new)."""
+        nothing; a ``measurement`` without one of those attributes raises ``ValueError`` (the
+        ``AttributeError`` as its cause), and an exception raised while getting one (a failing
+        property) propagates as it is. Allocation-free in Rust (only the returned array is
+        new)."""
         ...
     def reset(self) -> None:
         """Forgets the disturbance observer's estimate (before a new run from rest)."""
@@ -246,7 +270,13 @@ class Learner:
     built-in name or URDF path) fills the config's data-sheet fields (nominal gains, rest
     posture, torque limits); ``config`` is a dict of ``[learner]`` keys (``osrl train``'s TOML
     section, nested dicts for its groups, e.g. ``{"guards": {"warmup_samples": 200}}``;
-    unknown keys raise ``ValueError``); ``seed`` seeds the exploration noise."""
+    unknown keys raise ``ValueError``); ``seed`` seeds the exploration noise.
+
+    Checked at construction (``ValueError`` naming the argument or key): ``dof`` and
+    ``task_dim`` integers (0 < task_dim ≤ dof), ``control_period`` within 1e-4–0.1 s (the range
+    a saved model accepts), ``seed`` in [0, 2**64), and every config key, including the LWPR
+    sections ``partition.lwpr`` and ``gravity.lwpr`` (built as the learner builds its models,
+    e.g. ``init_d`` positive definite)."""
 
     def __init__(self, dof: int, task_dim: int, control_period: float,
                  robot: Optional[str] = None, config: Optional[Dict[str, Any]] = None,
@@ -259,8 +289,14 @@ class Learner:
         ...
     def learn(self, prev: Any, cur: Any) -> None:
         """Learns from the transition ``prev → cur`` (``osrl.Measurement``s; ``cur.u`` was
-        the command held in between). A rejected measurement raises ``ValueError`` (the
-        rejection is counted in ``stats``)."""
+        the command held in between). ``cur`` must be the measurement one control period after
+        ``prev``: ``cur.t − prev.t`` within ±50 % of ``control_period`` (enough for a real
+        robot's timing jitter and for times summed from rounded periods; it tells the next
+        measurement from the same one, an older one or one after a missed step), else
+        ``ValueError`` and nothing is learned. After a ``reset`` of the robot, ``prev`` is the
+        reset's measurement. A rejected measurement raises ``ValueError`` (the rejection is
+        counted in ``stats``). A measurement without one of the attributes raises
+        ``ValueError``; an exception raised while getting one propagates."""
         ...
     def start_episode(self, last_sent: Optional[ArrayLike1] = None) -> None:
         """Starts a new sequence of commands: ``last_sent`` is the command the robot holds
@@ -285,14 +321,16 @@ class Learner:
     @property
     def config(self) -> Dict[str, Any]: ...
 
-def train(robot: Any, trajectory: str = "figure8", minutes: float = 30.0, seed: int = 0,
-          config: Optional[Dict[str, Any]] = None,
+def train(robot: Any, trajectory: Optional[str] = None, minutes: Optional[float] = None,
+          seed: Optional[int] = None, config: Optional[Dict[str, Any]] = None,
           model: Optional[str] = None) -> LearnedController:
     """Trains a learned controller on ``robot`` (any object of ROBOT_PROTOCOL.md, e.g.
     ``osrl.mujoco.MujocoRobot``) with the Rust trainer of ``osrl train``: motor babbling, then
     on-policy learning along ``trajectory`` (``figure8``, ``circle``, ``min_jerk``) for
     ``minutes`` simulated minutes in all, seeded with ``seed``. The robot is first reset at
-    rest at the home posture.
+    rest at the home posture. ``trajectory``, ``minutes`` and ``seed`` default to the config's
+    ``trajectory.kind``, ``train.minutes`` and ``train.seed`` (themselves ``figure8``, 30 and
+    0); given both as a keyword and in ``config``, they must be equal (``ValueError``).
 
     ``model``: osrl's model of the robot (a built-in name or URDF path; default
     ``robot.osrl_name``, which ``MujocoRobot.builtin`` sets). It gives the trajectory, the home
@@ -301,18 +339,29 @@ def train(robot: Any, trajectory: str = "figure8", minutes: float = 30.0, seed: 
     measurements only). ``config``: ``{"learner": {...}, "train": {...}, "trajectory":
     {...}}`` with ``osrl train``'s TOML keys (unknown keys raise ``ValueError``).
 
+    The robot's attributes are checked first, each error naming it (``robot.dof``, ...):
+    ``dof`` and ``task_dim`` integers equal to the model's, ``control_period`` within
+    1e-4–0.1 s, ``torque_limits`` ``dof`` numbers > 0 (inf: none), ``joint_limits`` a pair
+    ``(q_min, q_max)`` with ``q_min < q_max`` per joint (∓inf: none). A measured command
+    ``robot.step().u`` beyond 10 × the torque limits (osrl's model's where the robot gives
+    none) stops the training with ``ValueError``.
+
     The GIL is released while training, taken for each ``robot.step``; Ctrl-C stops it. An
-    exception raised by the robot stops the training and is raised again."""
+    exception raised by the robot (or by a measurement's attribute) stops the training and is
+    raised again. A training that learned nothing raises ``ValueError`` when the learner's
+    guards rejected the robot's measurements (with the counts), and warns (``UserWarning``)
+    when it was too short for the learner's warm-up."""
     ...
 
 class Trajectory:
     """The task-space path ``osrl.train(robot, kind, config={"trajectory": config})`` follows
     for osrl's model ``robot`` (a built-in name or URDF path): ``sample(t)`` gives the targets
     a loop outside the trainer (a MuJoCo evaluation, a plot) tracks. ``kind``: ``figure8``,
-    ``circle`` or ``min_jerk``; ``config``: ``[trajectory]`` keys (unknown keys raise
+    ``circle`` or ``min_jerk`` (default: the config's ``kind``, itself ``figure8``; given in
+    both, they must be equal); ``config``: ``[trajectory]`` keys (unknown keys raise
     ``ValueError``)."""
 
-    def __init__(self, robot: str, kind: str = "figure8",
+    def __init__(self, robot: str, kind: Optional[str] = None,
                  config: Optional[Dict[str, Any]] = None) -> None: ...
     def sample(self, t: float) -> Tuple[Array, Array, Array]:
         """``(x_d, xd_d, xdd_d)`` at time ``t`` (s) on the task axes (m, m/s, m/s²); times
