@@ -198,7 +198,7 @@ pub fn alloc(what: &str, purpose: &str, rows: usize, cols: usize) -> PyResult<Ve
         PyMemoryError::new_err(format!(
             "{what}: cannot allocate {} MiB for the {purpose} of {rows} rows × {cols} columns; \
              split it into smaller batches",
-            values * 8 >> 20
+            (values * 8) >> 20
         ))
     })?;
     Ok(v)

@@ -140,7 +140,8 @@ impl PyLearner {
         let dt = self.learner.control_period();
         let (t0, t1) = (self.prev.t, self.cur.t);
         let gap = t1 - t0;
-        if !((gap - dt).abs() <= PERIOD_TOLERANCE * dt) {
+        let within = (gap - dt).abs() <= PERIOD_TOLERANCE * dt;
+        if !within {
             let why = if gap <= 0.0 {
                 "time does not advance (is prev the measurement before cur?)".to_string()
             } else {

@@ -84,7 +84,7 @@ fn numbers(obj: &Bound<'_, PyAny>, what: &str, len: usize) -> PyResult<Vec<f64>>
 fn torque_limits(obj: &Bound<'_, PyAny>, n: usize) -> PyResult<Vec<f64>> {
     let what = "robot.torque_limits";
     let tau = numbers(&attr(obj, "torque_limits")?, what, n)?;
-    if let Some(i) = tau.iter().position(|t| !(*t > 0.0)) {
+    if let Some(i) = tau.iter().position(|&t| t.is_nan() || t <= 0.0) {
         return Err(PyValueError::new_err(format!(
             "{what}[{i}] = {}: a torque limit must be > 0 N·m (inf for none); got {tau:?}",
             tau[i]
@@ -112,7 +112,7 @@ fn joint_limits(obj: &Bound<'_, PyAny>, n: usize) -> PyResult<(Vec<f64>, Vec<f64
         })?;
     let lo = numbers(&pair[0], &format!("{what}[0] (q_min)"), n)?;
     let hi = numbers(&pair[1], &format!("{what}[1] (q_max)"), n)?;
-    if let Some(i) = (0..n).find(|&i| !(lo[i] < hi[i])) {
+    if let Some(i) = (0..n).find(|&i| lo[i].is_nan() || hi[i].is_nan() || lo[i] >= hi[i]) {
         return Err(PyValueError::new_err(format!(
             "{what}: joint {i} has q_min = {} ≥ q_max = {}; need q_min < q_max (−inf and inf \
              for none)",
@@ -181,7 +181,7 @@ impl PyBot {
     /// `Ok` if the measured command `u` of `what` (`robot.step()`) is within
     /// [`U_LIMIT_FACTOR`] times the torque limits.
     fn check_u(&self, what: &str, u: &[f64]) -> PyResult<()> {
-        match (0..u.len()).find(|&i| !(u[i].abs() <= self.u_max[i])) {
+        match (0..u.len()).find(|&i| u[i].is_nan() || u[i].abs() > self.u_max[i]) {
             None => Ok(()),
             Some(i) => Err(PyValueError::new_err(format!(
                 "{what}.u[{i}] = {} N·m: beyond {U_LIMIT_FACTOR} × the joint's torque limit \
