@@ -120,8 +120,10 @@ impl Lwpr {
         self.n_updates
     }
 
-    /// The prediction the last update made before learning from its sample (user units;
-    /// NaN for an output where no trustworthy RF was updated).
+    /// The prediction of the last update at its sample: the updated receptive fields' own
+    /// predictions, each made after its regression learned from the sample, blended by their
+    /// activations (the reference's `lwpr_update` returns the same `yp`; user units; NaN for an
+    /// output where no trustworthy RF was updated).
     pub fn last_update_prediction(&self) -> &[f64] {
         &self.ws.last_yp
     }
