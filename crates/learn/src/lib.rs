@@ -31,6 +31,7 @@ mod saved;
 pub mod train;
 mod variant;
 
+pub use config::CONTROL_PERIOD_RANGE;
 pub use config::{
     AdaptationConfig, AdaptationSource, ControllerConfig, CostKind, CostMetric, DynamicsConfig,
     DynamicsRegression, ExplorationConfig, GravityConfig, GuardConfig, LearnerConfig, NoiseProcess,
@@ -43,7 +44,5 @@ pub use forward::ForwardModel;
 pub use gravity::{GravityModel, StaticGate};
 pub use learner::{AdaptationSignal, CommandSource, Learner, LearnerStats, EXTRAPOLATION_CUTOFF};
 pub use local::LocalSummary;
-pub use saved::{
-    load_robot, ModelInfo, SavedModel, CONTROL_PERIOD_RANGE, MODEL_MAGIC, MODEL_VERSION,
-};
+pub use saved::{load_robot, ModelInfo, SavedModel, MODEL_MAGIC, MODEL_VERSION};
 pub use variant::Variant;

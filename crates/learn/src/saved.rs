@@ -36,6 +36,7 @@
 //! # Ok::<(), osrl_learn::LearnError>(())
 //! ```
 
+use crate::config::CONTROL_PERIOD_RANGE;
 use crate::controller::LearnedController;
 use crate::error::{LearnError, Result};
 use crate::learner::Learner;
@@ -43,15 +44,12 @@ use crate::LearnerConfig;
 use osrl_control::{TaskGains, TrajectoryConfig};
 use osrl_dynamics::{robots, Model, RobotProfile};
 use serde::{Deserialize, Serialize};
-use std::ops::RangeInclusive;
 use std::path::Path;
 
 /// First bytes of a saved model.
 pub const MODEL_MAGIC: &[u8; 8] = b"OSRLMDL\0";
 /// Version of the saved model's layout; files of another version are refused.
 pub const MODEL_VERSION: u32 = 1;
-/// Control periods (s) a saved model may have: 10 kHz to 10 Hz.
-pub const CONTROL_PERIOD_RANGE: RangeInclusive<f64> = 1e-4..=0.1;
 /// First bytes of the learner-only file of the two-file format before [`MODEL_VERSION`] 1
 /// (learner file plus a `MODEL.json` sidecar).
 /// Largest model file [`SavedModel::load`] reads (1 GiB).

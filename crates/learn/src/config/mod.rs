@@ -2,6 +2,9 @@
 //! the nominal behaviour, the gravity model, the partition, the local controllers, their local
 //! dynamics, exploration and the guards. Validated once by [`LearnerConfig::validate`].
 
+/// Control periods (s) a learner and a saved model may have: 10 kHz to 10 Hz.
+pub const CONTROL_PERIOD_RANGE: std::ops::RangeInclusive<f64> = 1e-4..=0.1;
+
 mod adaptation;
 mod groups;
 pub mod scaled;

@@ -21,6 +21,8 @@ mod adapt;
 #[cfg(test)]
 mod adapt_tests;
 mod command;
+#[cfg(test)]
+mod construction_tests;
 mod cost;
 #[cfg(test)]
 mod dynamics_tests;

@@ -72,7 +72,7 @@ impl Learner {
     /// [`LearnError::InvalidConfig`] on an invalid config or dimensions.
     pub fn new(n: usize, m: usize, dt: f64, cfg: LearnerConfig) -> Result<Self> {
         cfg.validate(n)?;
-        let periods = crate::CONTROL_PERIOD_RANGE;
+        let periods = crate::config::CONTROL_PERIOD_RANGE;
         if m == 0 || m > n || !periods.contains(&dt) {
             return Err(LearnError::InvalidConfig(format!(
                 "need 0 < m ≤ n and a control period dt within [{:?}, {:?}] s, the range a \
