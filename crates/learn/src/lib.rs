@@ -42,7 +42,9 @@ pub use dob::Dob;
 pub use error::{LearnError, Result};
 pub use forward::ForwardModel;
 pub use gravity::{GravityModel, StaticGate};
-pub use learner::{AdaptationSignal, CommandSource, Learner, LearnerStats, EXTRAPOLATION_CUTOFF};
+pub use learner::{
+    AdaptationSignal, CommandSource, Learner, LearnerStats, EXTRAPOLATION_CUTOFF, PERIOD_TOLERANCE,
+};
 pub use local::LocalSummary;
 pub use saved::{load_robot, ModelInfo, SavedModel, MODEL_MAGIC, MODEL_VERSION};
 pub use variant::Variant;

@@ -9,7 +9,7 @@ use crate::errors::learn_err;
 use crate::meas::{read_all, read_checked, zeros};
 use numpy::PyArray1;
 use osrl_dynamics::Measurement;
-use osrl_learn::{load_robot, Learner, LearnerConfig, CONTROL_PERIOD_RANGE};
+use osrl_learn::{load_robot, Learner, LearnerConfig, CONTROL_PERIOD_RANGE, PERIOD_TOLERANCE};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use rand::SeedableRng;
@@ -65,13 +65,6 @@ pub fn check_control_period(what: &str, dt: f64) -> PyResult<()> {
         short(*r.end())
     )))
 }
-
-/// How far the time between two measurements given to `learn` may be from the control period,
-/// as a fraction of it. The learner takes each transition as one control period under the held
-/// command; half a period tells the next measurement (one period on) from the same one (0) or
-/// one after a missed step (2 periods), and leaves room for a real robot's timing jitter and
-/// for a time summed up from rounded periods.
-pub const PERIOD_TOLERANCE: f64 = 0.5;
 
 #[pymethods]
 impl PyLearner {

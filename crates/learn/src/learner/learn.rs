@@ -5,6 +5,14 @@ use super::{Learner, Models, State};
 use crate::error::{LearnError, Result};
 use osrl_dynamics::Measurement;
 
+/// How far the time between the two measurements of a transition given to
+/// [`Learner::learn`] may be from the control period, as a fraction of it. The learner takes
+/// each transition as one control period under the held command; half a period tells the next
+/// measurement (one period on) from the same one (0) or one after a missed step (2 periods),
+/// and leaves room for a real robot's timing jitter and for a time summed up from rounded
+/// periods.
+pub const PERIOD_TOLERANCE: f64 = 0.5;
+
 impl Learner {
     /// Checks a measurement: right sizes, finite, and not absurd (`guards`).
     ///
@@ -43,13 +51,32 @@ impl Learner {
         Ok(())
     }
 
-    /// Learns from the transition `prev → cur` (the command `cur.u` was held in between).
+    /// `cur` follows `prev` by one control period, within [`PERIOD_TOLERANCE`].
+    fn check_step(&self, prev: &Measurement, cur: &Measurement) -> Result<()> {
+        let step = cur.t - prev.t;
+        if (step - self.dt).abs() <= PERIOD_TOLERANCE * self.dt {
+            Ok(())
+        } else {
+            Err(LearnError::BadMeasurement(format!(
+                "cur.t − prev.t = {step:?} s is not one control period ({:?} s ± {:.0} %)",
+                self.dt,
+                PERIOD_TOLERANCE * 100.0
+            )))
+        }
+    }
+
+    /// Learns from the transition `prev → cur` (the command `cur.u` was held in between); `cur`
+    /// one control period after `prev` (within [`PERIOD_TOLERANCE`]).
     ///
     /// # Errors
     /// [`LearnError::BadMeasurement`] for a rejected measurement (counted; nothing else
     /// changes), or a model failure.
     pub fn learn(&mut self, prev: &Measurement, cur: &Measurement) -> Result<()> {
-        if let Err(e) = self.check(cur).and_then(|_| self.check(prev)) {
+        let checked = self
+            .check_step(prev, cur)
+            .and_then(|_| self.check(cur))
+            .and_then(|_| self.check(prev));
+        if let Err(e) = checked {
             self.stats.rejected += 1;
             return Err(e);
         }

@@ -64,6 +64,7 @@ pub use adapt::AdaptationSignal;
 pub use command::{CommandSource, EXTRAPOLATION_CUTOFF};
 pub(crate) use features::Features;
 pub use guards::RateLimiter;
+pub use learn::PERIOD_TOLERANCE;
 pub use load::LoadCorrection;
 pub(crate) use models::Models;
 pub use state::Learner;
