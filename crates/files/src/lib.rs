@@ -293,24 +293,7 @@ fn probe_folder(dir: &Path) -> Result<()> {
 /// [`FileError::NotRegular`] for a directory, FIFO, device or socket (checked before opening
 /// it); [`FileError::TooLarge`] beyond `limit`; [`FileError::Io`] if it cannot be read.
 pub fn read_limited(path: &Path, limit: u64) -> Result<Vec<u8>> {
-    let (file, meta) = open_regular(path)?;
-    let too_large = |size| FileError::TooLarge {
-        path: path.display().to_string(),
-        size,
-        limit,
-    };
-    if meta.len() > limit {
-        return Err(too_large(meta.len()));
-    }
-    let mut bytes = Vec::with_capacity(meta.len() as usize);
-    // A file that grew since: read one byte beyond the limit to notice.
-    file.take(limit.saturating_add(1))
-        .read_to_end(&mut bytes)
-        .map_err(io(path, "read"))?;
-    if bytes.len() as u64 > limit {
-        return Err(too_large(bytes.len() as u64));
-    }
-    Ok(bytes)
+    read_from(path, limit, None)
 }
 
 /// As [`read_limited`], but the whole file only if it starts with one of `starts` (a format's
@@ -321,12 +304,42 @@ pub fn read_limited(path: &Path, limit: u64) -> Result<Vec<u8>> {
 /// # Errors
 /// As [`read_limited`].
 pub fn read_limited_if_starts(path: &Path, limit: u64, starts: &[&[u8]]) -> Result<Vec<u8>> {
-    let head_len = starts.iter().map(|s| s.len()).max().unwrap_or(0) as u64;
-    let mut head = read_head(path, head_len.min(limit))?;
-    if starts.iter().any(|s| head.starts_with(s)) {
-        head = read_limited(path, limit)?;
+    read_from(path, limit, Some(starts))
+}
+
+/// [`read_limited`] through one open file; with `starts`, the file's first bytes are read
+/// first and the rest only if they begin with one of `starts`.
+fn read_from(path: &Path, limit: u64, starts: Option<&[&[u8]]>) -> Result<Vec<u8>> {
+    let (mut file, meta) = open_regular(path)?;
+    let mut bytes = Vec::new();
+    if let Some(starts) = starts {
+        let head = starts.iter().map(|s| s.len()).max().unwrap_or(0) as u64;
+        file.by_ref()
+            .take(head.min(limit))
+            .read_to_end(&mut bytes)
+            .map_err(io(path, "read"))?;
+        if !starts.iter().any(|s| bytes.starts_with(s)) {
+            return Ok(bytes);
+        }
     }
-    Ok(head)
+    let too_large = |size| FileError::TooLarge {
+        path: path.display().to_string(),
+        size,
+        limit,
+    };
+    if meta.len() > limit {
+        return Err(too_large(meta.len()));
+    }
+    bytes.reserve((meta.len() as usize).saturating_sub(bytes.len()));
+    // A file that grew since: read one byte beyond the limit to notice.
+    let rest = limit.saturating_add(1) - bytes.len() as u64;
+    file.take(rest)
+        .read_to_end(&mut bytes)
+        .map_err(io(path, "read"))?;
+    if bytes.len() as u64 > limit {
+        return Err(too_large(bytes.len() as u64));
+    }
+    Ok(bytes)
 }
 
 /// `path` opened for reading, with its metadata, if it is a regular file (symbolic links
@@ -342,16 +355,6 @@ fn open_regular(path: &Path) -> Result<(std::fs::File, Metadata)> {
     }
     let file = std::fs::File::open(path).map_err(io(path, "read"))?;
     Ok((file, meta))
-}
-
-/// The first `n` bytes of the regular file `path` (fewer if it is shorter).
-fn read_head(path: &Path, n: u64) -> Result<Vec<u8>> {
-    let (file, _) = open_regular(path)?;
-    let mut head = Vec::new();
-    file.take(n)
-        .read_to_end(&mut head)
-        .map_err(io(path, "read"))?;
-    Ok(head)
 }
 
 /// As [`read_limited`], as UTF-8 text.

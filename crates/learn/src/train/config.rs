@@ -337,42 +337,42 @@ mod tests {
     /// A training setting out of range is refused with its name, value and accepted range.
     #[test]
     fn a_training_setting_out_of_range_is_named_with_its_value() {
-        let cfg = super::TrainConfig {
-            quiet_hold_gain: 1.5,
-            ..Default::default()
-        };
-        let e = cfg.validate().unwrap_err().to_string();
-        assert!(
-            e.contains("quiet_hold_gain = 1.5: accepted in [0, 1]"),
-            "{e}"
-        );
-        let cfg = super::TrainConfig {
-            command_step_limit: Some(-0.1),
-            ..Default::default()
-        };
-        let e = cfg.validate().unwrap_err().to_string();
-        assert!(e.contains("command_step_limit = Some(-0.1)"), "{e}");
-        // Episodes and stops whose path, built ahead, took gigabytes and never finished.
-        let cfg = super::TrainConfig {
-            episode_seconds: 1e9,
-            ..Default::default()
-        };
-        let e = cfg.validate().unwrap_err().to_string();
-        assert!(
-            e.contains("episode_seconds = 1000000000.0: accepted > 0 and at most 3600"),
-            "{e}"
-        );
-        let mut cfg = super::TrainConfig::default();
+        use super::TrainConfig;
+        let refused = |cfg: &TrainConfig| cfg.validate().unwrap_err().to_string();
+        for (cfg, want) in [
+            (
+                TrainConfig {
+                    quiet_hold_gain: 1.5,
+                    ..Default::default()
+                },
+                "quiet_hold_gain = 1.5: accepted in [0, 1]",
+            ),
+            (
+                TrainConfig {
+                    command_step_limit: Some(-0.1),
+                    ..Default::default()
+                },
+                "command_step_limit = Some(-0.1)",
+            ),
+            // Episodes and stops whose path, built ahead, took gigabytes and never finished.
+            (
+                TrainConfig {
+                    episode_seconds: 1e9,
+                    ..Default::default()
+                },
+                "episode_seconds = 1000000000.0: accepted > 0 and at most 3600",
+            ),
+        ] {
+            let e = refused(&cfg);
+            assert!(e.contains(want), "{e}");
+        }
+        let mut cfg = TrainConfig::default();
         cfg.curriculum.stop_every = 1e-6;
-        let e = cfg.validate().unwrap_err().to_string();
+        let e = refused(&cfg);
         assert!(e.contains("curriculum.stop_every = 0.000001"), "{e}");
         cfg.curriculum.stop_every = 0.0;
         cfg.curriculum.hold_seconds = 1e300;
-        assert!(cfg
-            .validate()
-            .unwrap_err()
-            .to_string()
-            .contains("hold_seconds"));
+        assert!(refused(&cfg).contains("hold_seconds"));
         cfg.curriculum.hold_seconds = 0.0;
         cfg.episode_seconds = super::MAX_EPISODE_SECONDS;
         cfg.validate().unwrap();
