@@ -193,20 +193,97 @@ impl ArticulatedInertia {
     }
     /// This inertia (given in a child frame) expressed in the parent frame of `pose`:
     /// `ᵖX*_c I ᶜX_p`, computed as a rotation followed by a shift with `P = [p]×`.
+    ///
+    /// The products are written out ([`rotate`], [`skew_mul`], [`mul_skew`]) in the order of
+    /// nalgebra's, with `P`'s zero entries left out: the same values as the matrix expression
+    /// `(R A Rᵀ) − B' P − (B' P)ᵀ − (P C') P` (test `to_parent_equals_the_matrix_products`), in a
+    /// third fewer operations (ABA's pass 2, the simulator's main cost).
     #[inline]
     pub fn to_parent(&self, pose: &Pose) -> ArticulatedInertia {
         let r = &pose.rot;
-        let rt = r.transpose();
-        let a = r * self.a * rt;
-        let b = r * self.b * rt;
-        let c = r * self.c * rt;
-        let p = skew(&pose.trans);
-        let pc = p * c;
-        let bp = b * p;
+        let a = rotate(r, &self.a);
+        let b = rotate(r, &self.b);
+        let c = rotate(r, &self.c);
+        let p = &pose.trans;
+        let pc = skew_mul(p, &c);
+        let bp = mul_skew(&b, p);
         ArticulatedInertia {
-            a: a - bp - bp.transpose() - pc * p,
+            a: a - bp - bp.transpose() - mul_skew(&pc, p),
             b: b + pc,
             c,
+        }
+    }
+}
+
+/// `(R X) Rᵀ`, each entry summed over `k = 0, 1, 2` in turn as nalgebra's product does.
+#[inline(always)]
+fn rotate(r: &Matrix3<f64>, x: &Matrix3<f64>) -> Matrix3<f64> {
+    let rx = Matrix3::from_fn(|i, j| {
+        r[(i, 0)] * x[(0, j)] + r[(i, 1)] * x[(1, j)] + r[(i, 2)] * x[(2, j)]
+    });
+    Matrix3::from_fn(|i, j| {
+        rx[(i, 0)] * r[(j, 0)] + rx[(i, 1)] * r[(j, 1)] + rx[(i, 2)] * r[(j, 2)]
+    })
+}
+
+/// `[p]× X` without the zero terms: row `i` is `Σ_k P_ik X_kj` over the two `k ≠ i`, in order.
+#[inline(always)]
+fn skew_mul(p: &Vector3<f64>, x: &Matrix3<f64>) -> Matrix3<f64> {
+    Matrix3::from_fn(|i, j| match i {
+        0 => -p.z * x[(1, j)] + p.y * x[(2, j)],
+        1 => p.z * x[(0, j)] + -p.x * x[(2, j)],
+        _ => -p.y * x[(0, j)] + p.x * x[(1, j)],
+    })
+}
+
+/// `X [p]×` without the zero terms: column `j` is `Σ_k X_ik P_kj` over the two `k ≠ j`, in order.
+#[inline(always)]
+fn mul_skew(x: &Matrix3<f64>, p: &Vector3<f64>) -> Matrix3<f64> {
+    Matrix3::from_fn(|i, j| match j {
+        0 => x[(i, 1)] * p.z + x[(i, 2)] * -p.y,
+        1 => x[(i, 0)] * -p.z + x[(i, 2)] * p.x,
+        _ => x[(i, 0)] * p.y + x[(i, 1)] * -p.x,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spatial::axis_angle;
+    use rand::{RngExt, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    /// The written-out products give the values of the matrix expression they replace, on
+    /// random inertias and poses and on poses with zero offsets (the built-in arms have them).
+    #[test]
+    fn to_parent_equals_the_matrix_products() {
+        let mut rng = ChaCha8Rng::seed_from_u64(11);
+        let m3 = |rng: &mut ChaCha8Rng| Matrix3::from_fn(|_, _| rng.random_range(-3.0..3.0));
+        for k in 0..2000 {
+            let ia = ArticulatedInertia {
+                a: m3(&mut rng),
+                b: m3(&mut rng),
+                c: m3(&mut rng),
+            };
+            let axis = Vector3::new(rng.random(), rng.random(), rng.random::<f64>()).normalize();
+            let mut trans = Vector3::from_fn(|_, _| rng.random_range(-1.0..1.0));
+            if k % 4 == 0 {
+                trans[k / 4 % 3] = 0.0;
+            }
+            if k % 7 == 0 {
+                trans.fill(0.0);
+            }
+            let pose = Pose {
+                rot: axis_angle(&axis, rng.random_range(-3.0..3.0)),
+                trans,
+            };
+            let (r, rt, p) = (pose.rot, pose.rot.transpose(), skew(&pose.trans));
+            let (a, b, c) = (r * ia.a * rt, r * ia.b * rt, r * ia.c * rt);
+            let (pc, bp) = (p * c, b * p);
+            let got = ia.to_parent(&pose);
+            assert_eq!(got.a, a - bp - bp.transpose() - pc * p, "a, draw {k}");
+            assert_eq!(got.b, b + pc, "b, draw {k}");
+            assert_eq!(got.c, c, "c, draw {k}");
         }
     }
 }

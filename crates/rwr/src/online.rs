@@ -209,9 +209,15 @@ impl OnlineRwr {
     pub fn update_scaled(&mut self, trust_scale: f64) -> Result<StepInfo> {
         self.stats.flush();
         let prior = self.cfg.ridge_to_previous.then(|| self.policy.theta());
-        let msr = self
-            .solver
+        self.solver
             .solve_with_prior(&self.stats, self.cfg.ridge, prior)?;
+        // Eq. 24's residual, of the solution before the trust region shrinks it; only when `σ`
+        // follows it.
+        let msr = if self.cfg.update_sigma {
+            self.solver.residual(&self.stats)
+        } else {
+            0.0
+        };
         let shrink = match self.cfg.trust_region {
             Some(delta) => crate::trust::shrink(
                 &self.stats.gram,

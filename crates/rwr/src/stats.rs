@@ -163,10 +163,9 @@ impl Solver {
         }
     }
 
-    /// Eq. 23 with ridge: `θ = (G/Σw + λI)⁻¹ (C/Σw)` into `self.theta`, and returns the weighted
-    /// mean squared residual per action dimension `Σ w ‖u − θᵀφ‖² / (d Σw)` (eq. 24).
-    /// Only the lower triangle of `G` is read. Does not allocate.
-    pub fn solve(&mut self, s: &Stats, ridge: f64) -> Result<f64> {
+    /// Eq. 23 with ridge: `θ = (G/Σw + λI)⁻¹ (C/Σw)` into `self.theta`. Only the lower
+    /// triangle of `G` is read. Does not allocate.
+    pub fn solve(&mut self, s: &Stats, ridge: f64) -> Result<()> {
         self.solve_with_prior(s, ridge, None)
     }
 
@@ -177,7 +176,7 @@ impl Solver {
         s: &Stats,
         ridge: f64,
         prior: Option<&DMatrix<f64>>,
-    ) -> Result<f64> {
+    ) -> Result<()> {
         #[cfg(target_arch = "x86_64")]
         if crate::simd::avx2() {
             // SAFETY: the CPU supports AVX2 (checked just above).
@@ -189,8 +188,28 @@ impl Solver {
     /// [`Solver::solve_with_prior`] compiled for AVX2.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
-    fn solve_avx2(&mut self, s: &Stats, ridge: f64, prior: Option<&DMatrix<f64>>) -> Result<f64> {
+    fn solve_avx2(&mut self, s: &Stats, ridge: f64, prior: Option<&DMatrix<f64>>) -> Result<()> {
         self.solve_body(s, ridge, prior)
+    }
+
+    /// The weighted mean squared residual per action dimension of the `θ` in `self.theta`,
+    /// `Σ w ‖u − θᵀφ‖² / (d Σw)` (eq. 24), from the statistics it was solved from. Only an
+    /// M-step that updates `σ` needs it (the local dynamics regression does not: `O(d p²)` saved
+    /// per solve). Does not allocate.
+    pub fn residual(&self, s: &Stats) -> f64 {
+        #[cfg(target_arch = "x86_64")]
+        if crate::simd::avx2() {
+            // SAFETY: the CPU supports AVX2 (checked just above).
+            return unsafe { self.residual_avx2(s) };
+        }
+        self.residual_body(s)
+    }
+
+    /// [`Solver::residual`] compiled for AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn residual_avx2(&self, s: &Stats) -> f64 {
+        self.residual_body(s)
     }
 
     #[inline(always)]
@@ -199,7 +218,7 @@ impl Solver {
         s: &Stats,
         ridge: f64,
         prior: Option<&DMatrix<f64>>,
-    ) -> Result<f64> {
+    ) -> Result<()> {
         if s.sw.is_nan() || s.sw <= 0.0 {
             return Err(RwrError::NoWeight);
         }
@@ -220,7 +239,13 @@ impl Solver {
                 *t += ridge * p;
             }
         }
-        crate::cholesky::solve_lower(&mut self.a, &mut self.theta)?;
+        crate::cholesky::solve_lower(&mut self.a, &mut self.theta)
+    }
+
+    #[inline(always)]
+    pub(crate) fn residual_body(&self, s: &Stats) -> f64 {
+        let p = self.a.nrows();
+        let inv = 1.0 / s.sw;
         // Σw‖u − θᵀφ‖² = Σw‖u‖² − 2 tr(θᵀC) + tr(θᵀGθ), with G symmetric from its lower
         // triangle: θ_kᵀ G θ_k = Σ_j θ_jk (G_jj θ_jk + 2 Σ_{i>j} G_ij θ_ik), on contiguous columns.
         let (g, c) = (s.gram.as_slice(), s.cross.as_slice());
@@ -232,8 +257,7 @@ impl Solver {
                 quad += t[j] * (g[j * p + j] * t[j] + 2.0 * below - 2.0 * c[k * p + j]);
             }
         }
-        let t = &self.theta;
-        Ok(((s.yy + quad) * inv / t.ncols() as f64).max(0.0))
+        ((s.yy + quad) * inv / self.theta.ncols() as f64).max(0.0)
     }
 }
 
