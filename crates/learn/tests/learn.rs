@@ -130,10 +130,22 @@ fn save_load_round_trips_and_bad_files_are_errors() {
 fn invalid_training_settings_are_refused_with_the_field_named() {
     use osrl_learn::train::TrainConfig;
     assert!(TrainConfig::default().validate().is_ok());
+    // Below 0, above a PD error of π rad, NaN.
+    for bad in [-0.1, 3.2, 1e300, f64::NAN] {
+        let mut cfg = TrainConfig::default();
+        cfg.babble.noise = bad;
+        let e = cfg.validate().unwrap_err().to_string();
+        assert!(e.contains("babble.noise"), "{bad}: {e}");
+    }
+    for bad in [0.0, 101.0, 1e300] {
+        let mut cfg = TrainConfig::default();
+        cfg.babble.gain_scale = bad;
+        let e = cfg.validate().unwrap_err().to_string();
+        assert!(e.contains("babble.gain_scale"), "{bad}: {e}");
+    }
     let mut cfg = TrainConfig::default();
-    cfg.babble.noise = -0.1;
-    let e = cfg.validate().unwrap_err().to_string();
-    assert!(e.contains("babble.noise"), "{e}");
+    (cfg.babble.noise, cfg.babble.gain_scale) = (std::f64::consts::PI, 100.0);
+    assert!(cfg.validate().is_ok(), "the bounds themselves are accepted");
     let mut cfg = TrainConfig::default();
     cfg.babble.move_time = [2.0, 1.0];
     let e = cfg.validate().unwrap_err().to_string();

@@ -21,11 +21,11 @@ pub struct BabbleConfig {
     /// Holding time at each target (s), without noise, so the arm comes to rest there (the still
     /// samples of the static gravity model). Default 0.5.
     pub settle: f64,
-    /// Scale of the robot's PD gains while babbling. Default 3: stiff enough to follow the moves
-    /// with the untrained gravity model.
+    /// Scale of the robot's PD gains while babbling (at most [`MAX_BABBLE_GAIN_SCALE`]). Default
+    /// 3: stiff enough to follow the moves with the untrained gravity model.
     pub gain_scale: f64,
-    /// White Gaussian torque noise while babbling, as the PD error (rad) it equals: joint `j`
-    /// gets standard deviation `noise · K_Pq,j` (N·m). It makes the commands vary independently
+    /// White Gaussian torque noise while babbling, as the PD error (rad, at most π) it equals:
+    /// joint `j` gets standard deviation `noise · K_Pq,j` (N·m). It makes the commands vary independently
     /// of the state, so the local dynamics `Â = ∂ẍ/∂u` are identifiable. Default 0.02.
     pub noise: f64,
     /// Correlation time of that noise (s; an Ornstein–Uhlenbeck process per joint; 0: white).
@@ -60,6 +60,10 @@ impl BabbleConfig {
 /// Longest on-policy episode (s): an hour. An episode's path is built ahead, and one that long
 /// would not return home for the rest of most runs.
 pub const MAX_EPISODE_SECONDS: f64 = 3600.0;
+
+/// Largest `babble.gain_scale`: a hundred times the data sheet's PD gains is stiffer than any
+/// joint servo runs stably at these control rates; beyond it babbling only saturates.
+pub const MAX_BABBLE_GAIN_SCALE: f64 = 100.0;
 
 /// Settings of a training run.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -231,10 +235,15 @@ impl TrainConfig {
             (
                 "babble.gain_scale",
                 v(&b.gain_scale),
-                pos,
-                finite_pos(b.gain_scale),
+                "> 0 and at most 100",
+                finite_pos(b.gain_scale) && b.gain_scale <= MAX_BABBLE_GAIN_SCALE,
             ),
-            ("babble.noise", v(&b.noise), nonneg, finite_nonneg(b.noise)),
+            (
+                "babble.noise",
+                v(&b.noise),
+                "in [0, π] (rad of PD error)",
+                (0.0..=std::f64::consts::PI).contains(&b.noise),
+            ),
             (
                 "babble.settle",
                 v(&b.settle),
