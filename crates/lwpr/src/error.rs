@@ -55,6 +55,19 @@ pub enum LwprError {
         /// Output (sub-model) without support.
         output: usize,
     },
+    /// The prediction came out infinite or NaN from finite inputs: the model's coefficients
+    /// overflow at this input (a model file edited by hand or by a bug; training never makes
+    /// one).
+    #[error(
+        "the prediction of output {output} is not finite ({value}): the model's coefficients \
+         overflow at this input"
+    )]
+    PredictionOverflow {
+        /// The output.
+        output: usize,
+        /// Its value.
+        value: f64,
+    },
     /// A sub-model index out of range.
     #[error("sub-model {index} does not exist (the model has {count})")]
     NoSubModel {

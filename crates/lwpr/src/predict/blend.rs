@@ -69,8 +69,21 @@ pub(crate) fn predict_core<S: Stages, const PLAIN: bool>(
         }
         min_sw = min_sw.min(sum_w);
         finish(p, ws, o0, sum_w, want);
+        check_finite_outputs(&ws.y[o0..o0 + ny], o0)?;
     }
     Ok(Support { sum_w: min_sw })
+}
+
+/// [`LwprError::PredictionOverflow`] at the first non-finite value of `y` (outputs `o0..`).
+#[inline(always)]
+pub(crate) fn check_finite_outputs(y: &[f64], o0: usize) -> Result<(), LwprError> {
+    match y.iter().position(|v| !v.is_finite()) {
+        None => Ok(()),
+        Some(k) => Err(LwprError::PredictionOverflow {
+            output: o0 + k,
+            value: y[k],
+        }),
+    }
 }
 
 /// The sums over the RFs of sub-model `sub` that predict at the input in `ws` (trustworthy,

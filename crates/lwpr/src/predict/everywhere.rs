@@ -41,8 +41,9 @@ impl Lwpr {
     /// RF, never `−∞` there; continuous; the smallest over the sub-models). Does not allocate; does not use or change the cached prediction.
     ///
     /// # Errors
-    /// [`LwprError::NoActiveRf`] when a sub-model has no trustworthy RF with `w > 0` (`y` is
-    /// then untouched); wrong lengths; a non-finite input.
+    /// [`LwprError::NoActiveRf`] when a sub-model has no trustworthy RF with `w > 0`;
+    /// [`LwprError::PredictionOverflow`] when the blend overflows; wrong lengths; a non-finite
+    /// input. On an error `y` is untouched.
     pub fn predict_everywhere(&mut self, x: &[f64], y: &mut [f64]) -> Result<f64, LwprError> {
         check_vec("x", x, self.p.n_in)?;
         check_len("y", y.len(), self.p.n_out)?;
@@ -58,8 +59,14 @@ impl Lwpr {
             }
             min_ln = min_ln.min(ln_sum);
         }
+        // Checked before `y` is written (`ws.y` holds the cached prediction: not used here).
+        let value = |o: usize| ws.yacc[o] * p.norm_out[o];
+        if let Some(output) = (0..y.len()).find(|&o| !value(o).is_finite()) {
+            let value = value(output);
+            return Err(LwprError::PredictionOverflow { output, value });
+        }
         for (o, v) in y.iter_mut().enumerate() {
-            *v = ws.yacc[o] * p.norm_out[o];
+            *v = value(o);
         }
         Ok(min_ln)
     }

@@ -19,7 +19,9 @@ impl Lwpr {
     /// Predicts `y` (length `n_out`) at `x` (length `n_in`).
     ///
     /// Fails with [`LwprError::NoActiveRf`] when, for some output, no trustworthy RF has
-    /// `w > cutoff` (the model has no support there); `y` is then left untouched.
+    /// `w > cutoff` (the model has no support there), and with
+    /// [`LwprError::PredictionOverflow`] when the blend is not finite (coefficients out of
+    /// range in a hand-made model file); `y` is then left untouched.
     pub fn predict(&mut self, x: &[f64], y: &mut [f64]) -> Result<Support, LwprError> {
         check_len("y", y.len(), self.p.n_out)?;
         let s = self.predict_impl(x, Want::Plain)?;

@@ -10,6 +10,7 @@ mod group;
 mod guard;
 mod head_bounds;
 mod heads;
+mod overflow;
 mod paths;
 mod pls_exact;
 mod rf_2d;
