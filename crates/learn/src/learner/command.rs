@@ -55,10 +55,14 @@ impl Learner {
     ) -> Result<CommandSource> {
         self.check_command_args(q, qd, xdd_ref, u)?;
         self.stats.commands += 1;
-        let source = match self.blend(q, qd, xdd_ref, u)? {
-            None => self.fallback(q, qd, u)?,
-            Some(blend) => self.finish_blend(q, qd, blend, rng, u)?,
+        self.ws.gains = None;
+        let finished = match self.blend(q, qd, xdd_ref, u) {
+            Ok(None) => self.fallback(q, qd, u),
+            Ok(Some(blend)) => self.finish_blend(q, qd, blend, rng, u),
+            Err(e) => Err(e),
         };
+        self.ws.gains = None;
+        let source = finished?;
         let source = self.guard_non_finite(q, qd, source, u)?;
         self.clip(u);
         if self.rate.apply(u) {
@@ -210,20 +214,42 @@ impl Learner {
         if !self.cfg.gravity.null_correction || models.gravity_null.is_none() {
             return Ok(());
         }
-        let ws = &mut self.ws;
-        let weights = (
-            self.cfg.partition.activation_cutoff,
-            self.cfg.controllers.trained_ess,
-        );
-        if !models.command_gain(&self.features, &ws.acts, q, weights, &mut ws.a_hat) {
+        if !self.command_gains(q).0 {
             return Ok(());
         }
+        let State::Ready(models) = &mut self.state else {
+            return Ok(());
+        };
+        let ws = &mut self.ws;
         if null_correction_into_z(&self.cfg, models, ws, q, self.gravity_frozen, &self.load)? {
             for (v, z) in u.iter_mut().zip(&ws.z) {
                 *v += z;
             }
         }
         Ok(())
+    }
+
+    /// `Â` at the command's state `q` (active fields in `ws.acts`): of the command's blend in
+    /// `ws.a_hat` and of the plain activations in `ws.a_hat_plain`, formed once per command
+    /// (`Models::command_and_blended_gain`) for the projection, the null-space correction and
+    /// the exploration; whether each is known.
+    pub(super) fn command_gains(&mut self, q: &[f64]) -> (bool, bool) {
+        if let Some(known) = self.ws.gains {
+            return known;
+        }
+        let State::Ready(models) = &self.state else {
+            return (false, false);
+        };
+        let ws = &mut self.ws;
+        let weights = (
+            self.cfg.partition.activation_cutoff,
+            self.cfg.controllers.trained_ess,
+        );
+        let (acts, a_cmd, a_plain) = (&ws.acts, &mut ws.a_hat, &mut ws.a_hat_plain);
+        let known =
+            models.command_and_blended_gain(&self.features, acts, q, weights, a_cmd, a_plain);
+        ws.gains = Some(known);
+        known
     }
 
     /// The nominal `u0` as the command where no trained controller is near (counted).

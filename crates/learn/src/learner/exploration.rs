@@ -203,7 +203,11 @@ fn add_noise<R: Rng + ?Sized>(
     let m = ws.y.len();
     if cfg.experimental.null_space_exploration {
         noise.null.advance(rng);
-        let known = models.blended_gain(features, &ws.acts, q, &mut ws.a_hat);
+        // Formed with the command's `Â` when the command needed that (`command_gains`).
+        let known = match ws.gains {
+            Some((_, plain)) => plain,
+            None => models.blended_gain(features, &ws.acts, q, &mut ws.a_hat_plain),
+        };
         let ns_cap = cfg.experimental.null_space_cap.unwrap_or(f64::INFINITY);
         for ((z, scale), e) in ws
             .du
@@ -218,7 +222,7 @@ fn add_noise<R: Rng + ?Sized>(
         if known
             && project_null_in(
                 metric,
-                &ws.a_hat,
+                &ws.a_hat_plain,
                 &mut ws.du,
                 m,
                 &mut ws.y,

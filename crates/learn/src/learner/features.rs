@@ -271,6 +271,37 @@ impl Features {
         }
     }
 
+    /// [`Self::add_gain_table`] into two blends at once: `Â_i(q)` is formed once and added with
+    /// weight `w1` into `a1` and `w2` into `a2` (each only if its weight is > 0): the bits of two
+    /// calls of [`Self::add_gain_table`].
+    #[allow(clippy::too_many_arguments)]
+    pub fn add_gain_table_pair(
+        &self,
+        table: &[f64],
+        q: &[f64],
+        center: &[f64],
+        (w1, a1): (f64, &mut [f64]),
+        (w2, a2): (f64, &mut [f64]),
+    ) {
+        match self.n {
+            2 => gain_table_pair_n::<2>(table, q, center, (w1, a1), (w2, a2)),
+            3 => gain_table_pair_n::<3>(table, q, center, (w1, a1), (w2, a2)),
+            4 => gain_table_pair_n::<4>(table, q, center, (w1, a1), (w2, a2)),
+            5 => gain_table_pair_n::<5>(table, q, center, (w1, a1), (w2, a2)),
+            6 => gain_table_pair_n::<6>(table, q, center, (w1, a1), (w2, a2)),
+            7 => gain_table_pair_n::<7>(table, q, center, (w1, a1), (w2, a2)),
+            8 => gain_table_pair_n::<8>(table, q, center, (w1, a1), (w2, a2)),
+            _ => {
+                if w1 > 0.0 {
+                    self.add_gain_table_any(table, q, center, w1, a1);
+                }
+                if w2 > 0.0 {
+                    self.add_gain_table_any(table, q, center, w2, a2);
+                }
+            }
+        }
+    }
+
     /// [`Self::add_gain_table`] for any number of joints (up to 16).
     fn add_gain_table_any(&self, table: &[f64], q: &[f64], center: &[f64], w: f64, a: &mut [f64]) {
         let n = self.n;
@@ -340,6 +371,43 @@ fn gain_table_n<const N: usize>(table: &[f64], q: &[f64], center: &[f64], w: f64
         }
         for j in 0..N {
             ak[j] += w * g[j];
+        }
+    }
+}
+
+/// [`Features::add_gain_table_pair`] for `N` joints: each task row of `Â_i(q)` summed once
+/// (as [`gain_table_n`] sums it), then added to both blends.
+#[inline(always)]
+fn gain_table_pair_n<const N: usize>(
+    table: &[f64],
+    q: &[f64],
+    center: &[f64],
+    (w1, a1): (f64, &mut [f64]),
+    (w2, a2): (f64, &mut [f64]),
+) {
+    let mut dq = [0.0; N];
+    for i in 0..N {
+        dq[i] = q[i] - center[i];
+    }
+    let rows = table.chunks_exact(N + N * N);
+    for ((rowk, a1k), a2k) in rows.zip(a1.chunks_exact_mut(N)).zip(a2.chunks_exact_mut(N)) {
+        let mut g = [0.0; N];
+        g.copy_from_slice(&rowk[..N]);
+        for i in 0..N {
+            let t = &rowk[N + i * N..N + (i + 1) * N];
+            for j in 0..N {
+                g[j] += dq[i] * t[j];
+            }
+        }
+        if w1 > 0.0 {
+            for j in 0..N {
+                a1k[j] += w1 * g[j];
+            }
+        }
+        if w2 > 0.0 {
+            for j in 0..N {
+                a2k[j] += w2 * g[j];
+            }
         }
     }
 }

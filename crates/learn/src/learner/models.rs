@@ -200,7 +200,9 @@ impl Models {
     /// `Â` of the command's blend (eq. 34's weights): as [`Self::blended_gain`] with the weight
     /// `c_i (w_i − cutoff)` of `command.rs`'s blend (confidence `c_i` from the controller's
     /// effective sample size against `trained_ess`), so a field enters the `Â` continuously, as
-    /// it enters the command, and an untrained controller's field has no say in it.
+    /// it enters the command, and an untrained controller's field has no say in it. The command
+    /// forms it with [`Self::blended_gain`]'s in one pass ([`Self::command_and_blended_gain`]).
+    #[cfg(test)]
     pub fn command_gain(
         &self,
         features: &super::Features,
@@ -212,6 +214,60 @@ impl Models {
         self.weighted_gain(features, acts, q, a, |local, w| {
             crate::local::blend_weight(local.ess, trained_ess, w, cutoff)
         })
+    }
+
+    /// [`Self::command_gain`] into `a_cmd` and [`Self::blended_gain`] into `a_plain` in one pass
+    /// over the fields (each field's `Â_i(q)` formed once): the same bits as the two calls.
+    /// Returns whether each is known.
+    pub fn command_and_blended_gain(
+        &self,
+        features: &super::Features,
+        acts: &[lwpr::Activation],
+        q: &[f64],
+        (cutoff, trained_ess): (f64, f64),
+        a_cmd: &mut [f64],
+        a_plain: &mut [f64],
+    ) -> (bool, bool) {
+        a_cmd.fill(0.0);
+        a_plain.fill(0.0);
+        let (mut sum_v, mut sum_w) = (0.0, 0.0);
+        for act in acts {
+            let Some(local) = self.locals.map.get(&act.id) else {
+                continue;
+            };
+            if local.dynamics_updates == 0 {
+                continue;
+            }
+            let v = crate::local::blend_weight(local.ess, trained_ess, act.w, cutoff);
+            let (v, w) = (
+                if v > 0.0 { v } else { 0.0 },
+                if act.w > 0.0 { act.w } else { 0.0 },
+            );
+            if w == 0.0 && v == 0.0 {
+                continue;
+            }
+            if local.gain_table.is_empty() {
+                let theta = local.dynamics.theta();
+                if v > 0.0 {
+                    features.add_gain(theta, q, &local.center, v, a_cmd);
+                }
+                if w > 0.0 {
+                    features.add_gain(theta, q, &local.center, w, a_plain);
+                }
+            } else {
+                let table = &local.gain_table;
+                features.add_gain_table_pair(table, q, &local.center, (v, a_cmd), (w, a_plain));
+            }
+            sum_v += v;
+            sum_w += w;
+        }
+        let finish = |a: &mut [f64], sum: f64| {
+            if sum > 0.0 {
+                a.iter_mut().for_each(|x| *x /= sum);
+            }
+            sum > 0.0
+        };
+        (finish(a_cmd, sum_v), finish(a_plain, sum_w))
     }
 
     /// `Σ v_i Â_i(q) / Σ v_i` with `v_i = weight(local_i, w_i)` over the fields with fitted

@@ -163,7 +163,11 @@ impl Learner {
         if cfg.experimental.residual {
             self.load.add_into(&ws.acts, u0);
         }
-        self.add_null_correction(q, u0)?;
+        // Its own `Â` at this state, not a command's (`command_gains`).
+        self.ws.gains = None;
+        let corrected = self.add_null_correction(q, u0);
+        self.ws.gains = None;
+        corrected?;
         Ok(known)
     }
 

@@ -14,20 +14,13 @@ impl Learner {
     /// singular `Â Âᵀ`.
     pub(super) fn project_command(&mut self, q: &[f64], u: &mut [f64]) {
         let kc = self.cfg.controllers.command_projection;
+        if kc <= 0.0 || !self.cfg.experimental.residual || !self.command_gains(q).0 {
+            return;
+        }
         let State::Ready(models) = &self.state else {
             return;
         };
-        if kc <= 0.0 || !self.cfg.experimental.residual {
-            return;
-        }
         let ws = &mut self.ws;
-        let weights = (
-            self.cfg.partition.activation_cutoff,
-            self.cfg.controllers.trained_ess,
-        );
-        if !models.command_gain(&self.features, &ws.acts, q, weights, &mut ws.a_hat) {
-            return;
-        }
         ws.z.copy_from_slice(u);
         if project_scratch_z(models.metric.as_ref(), ws) {
             for (v, z) in u.iter_mut().zip(&ws.z) {

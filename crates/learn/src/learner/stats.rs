@@ -64,6 +64,11 @@ pub(crate) struct Scratch {
     pub c_null: Vec<f64>,
     /// `Â` (m×n), and the m-vector and m×m matrix of its null-space algebra.
     pub a_hat: Vec<f64>,
+    /// Within one command: `Â` of the plain activations (the exploration's), and whether the
+    /// command's `Â` (in `a_hat`) and this one are known at its state; `None` until the command
+    /// has formed them (`Learner::command_gains`), and again after it.
+    pub a_hat_plain: Vec<f64>,
+    pub gains: Option<(bool, bool)>,
     pub y: Vec<f64>,
     pub s: Vec<f64>,
     /// `Â` and a joint vector in the cost's metric (`metric.rs`).
@@ -97,6 +102,8 @@ impl Scratch {
             g_null: vec![0.0; n],
             c_null: vec![0.0; n],
             a_hat: vec![0.0; m * n],
+            a_hat_plain: vec![0.0; m * n],
+            gains: None,
             y: vec![0.0; m],
             s: vec![0.0; m * m],
             a_n: vec![0.0; m * n],
