@@ -28,7 +28,14 @@ pub(crate) fn check_len(what: &'static str, expected: usize, got: usize) -> Resu
 
 /// Fails if any value is NaN or infinite.
 pub(crate) fn check_finite(what: &'static str, v: &[f64]) -> Result<()> {
-    if v.iter().all(|x| x.is_finite()) {
+    // Without a branch per value (an OR of the exponent tests, which vectorises): the learner
+    // checks every field's features for every sample, and the short-circuiting loop was 2.5 %
+    // of a sarcos7 training run. An exponent of all ones is an infinity or a NaN.
+    const EXP: u64 = 0x7ff0_0000_0000_0000;
+    let bad = v
+        .iter()
+        .fold(0u64, |a, x| a | (x.to_bits() & EXP == EXP) as u64);
+    if bad == 0 {
         Ok(())
     } else {
         Err(RwrError::NonFinite(what))
@@ -124,5 +131,34 @@ impl LinearGaussianPolicy {
             *o += self.sigma * e;
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::check_finite;
+
+    /// The branch-free test agrees with `f64::is_finite` on the edge cases, in any position.
+    #[test]
+    fn check_finite_refuses_exactly_nan_and_infinities() {
+        let good = [
+            0.0,
+            -0.0,
+            f64::MAX,
+            f64::MIN,
+            f64::MIN_POSITIVE,
+            5e-324,
+            -5e-324,
+            1.0,
+        ];
+        assert!(check_finite("v", &good).is_ok());
+        assert!(check_finite("v", &[]).is_ok());
+        for bad in [f64::NAN, -f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            for k in 0..=good.len() {
+                let mut v = good.to_vec();
+                v.insert(k, bad);
+                assert!(check_finite("v", &v).is_err(), "{bad} at {k}");
+            }
+        }
     }
 }
