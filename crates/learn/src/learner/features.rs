@@ -151,9 +151,11 @@ impl Features {
             phi_d[2 * n + i] = q[i] - center[i];
         }
         if self.bilinear {
-            for j in 0..n {
-                for k in 0..n {
-                    phi_d[3 * n + 1 + j * n + k] = u[j] * phi_d[2 * n + k];
+            let (dq, block) = phi_d[2 * n..].split_at_mut(n + 1);
+            let block = &mut block[..n * n];
+            for (row, &uj) in block.chunks_exact_mut(n).zip(&u[..n]) {
+                for (o, &dqk) in row.iter_mut().zip(&dq[..n]) {
+                    *o = uj * dqk;
                 }
             }
         }
@@ -191,11 +193,15 @@ impl Features {
             phi_d[2 * n + i] = (q[i] - q0[i]) * inv_dt;
         }
         if self.bilinear {
-            for j in 0..n {
-                for k in 0..n {
-                    let now = u[j] * (q[k] - center[k]);
-                    let before = u0[j] * (q0[k] - center[k]);
-                    phi_d[3 * n + 1 + j * n + k] = (now - before) * inv_dt;
+            // Row `j` of the block: on slices, without index checks, so the row vectorises (every
+            // subtraction and product as written, in this order).
+            let (q, q0, c) = (&q[..n], &q0[..n], &center[..n]);
+            let block = &mut phi_d[3 * n + 1..3 * n + 1 + n * n];
+            for ((row, &uj), &u0j) in block.chunks_exact_mut(n).zip(&u[..n]).zip(&u0[..n]) {
+                for (((o, &qk), &q0k), &ck) in row.iter_mut().zip(q).zip(q0).zip(c) {
+                    let now = uj * (qk - ck);
+                    let before = u0j * (q0k - ck);
+                    *o = (now - before) * inv_dt;
                 }
             }
         }
