@@ -367,18 +367,26 @@ fn gain_table_n<const N: usize>(table: &[f64], q: &[f64], center: &[f64], w: f64
         dq[i] = q[i] - center[i];
     }
     for (rowk, ak) in table.chunks_exact(N + N * N).zip(a.chunks_exact_mut(N)) {
-        let mut g = [0.0; N];
-        g.copy_from_slice(&rowk[..N]);
-        for i in 0..N {
-            let t = &rowk[N + i * N..N + (i + 1) * N];
-            for j in 0..N {
-                g[j] += dq[i] * t[j];
-            }
-        }
+        let g = gain_row::<N>(rowk, &dq);
         for j in 0..N {
             ak[j] += w * g[j];
         }
     }
+}
+
+/// One task row of `Â_i(q)` from its table row: `Θ_u` plus `Σ_i dq_i Θ_{u q_i}`, in order of `i`
+/// (the sums in registers).
+#[inline(always)]
+fn gain_row<const N: usize>(rowk: &[f64], dq: &[f64; N]) -> [f64; N] {
+    let mut g = [0.0; N];
+    g.copy_from_slice(&rowk[..N]);
+    for i in 0..N {
+        let t = &rowk[N + i * N..N + (i + 1) * N];
+        for j in 0..N {
+            g[j] += dq[i] * t[j];
+        }
+    }
+    g
 }
 
 /// [`Features::add_gain_table_pair`] for `N` joints: each task row of `Â_i(q)` summed once
@@ -397,14 +405,7 @@ fn gain_table_pair_n<const N: usize>(
     }
     let rows = table.chunks_exact(N + N * N);
     for ((rowk, a1k), a2k) in rows.zip(a1.chunks_exact_mut(N)).zip(a2.chunks_exact_mut(N)) {
-        let mut g = [0.0; N];
-        g.copy_from_slice(&rowk[..N]);
-        for i in 0..N {
-            let t = &rowk[N + i * N..N + (i + 1) * N];
-            for j in 0..N {
-                g[j] += dq[i] * t[j];
-            }
-        }
+        let g = gain_row::<N>(rowk, &dq);
         if w1 > 0.0 {
             for j in 0..N {
                 a1k[j] += w1 * g[j];
