@@ -231,18 +231,9 @@ impl Models {
         a_cmd.fill(0.0);
         a_plain.fill(0.0);
         let (mut sum_v, mut sum_w) = (0.0, 0.0);
-        for act in acts {
-            let Some(local) = self.locals.map.get(&act.id) else {
-                continue;
-            };
-            if local.dynamics_updates == 0 {
-                continue;
-            }
-            let v = crate::local::blend_weight(local.ess, trained_ess, act.w, cutoff);
-            let (v, w) = (
-                if v > 0.0 { v } else { 0.0 },
-                if act.w > 0.0 { act.w } else { 0.0 },
-            );
+        for (local, w) in self.fitted(acts) {
+            let v = crate::local::blend_weight(local.ess, trained_ess, w, cutoff);
+            let (v, w) = (if v > 0.0 { v } else { 0.0 }, if w > 0.0 { w } else { 0.0 });
             if w == 0.0 && v == 0.0 {
                 continue;
             }
@@ -261,13 +252,18 @@ impl Models {
             sum_v += v;
             sum_w += w;
         }
-        let finish = |a: &mut [f64], sum: f64| {
-            if sum > 0.0 {
-                a.iter_mut().for_each(|x| *x /= sum);
-            }
-            sum > 0.0
-        };
-        (finish(a_cmd, sum_v), finish(a_plain, sum_w))
+        (normalise(a_cmd, sum_v), normalise(a_plain, sum_w))
+    }
+
+    /// The fields of `acts` whose local dynamics have been fitted, with their activations.
+    fn fitted<'a>(
+        &'a self,
+        acts: &'a [lwpr::Activation],
+    ) -> impl Iterator<Item = (&'a crate::local::Local, f64)> + 'a {
+        acts.iter().filter_map(|act| {
+            let local = self.locals.map.get(&act.id)?;
+            (local.dynamics_updates > 0).then_some((local, act.w))
+        })
     }
 
     /// `Σ v_i Â_i(q) / Σ v_i` with `v_i = weight(local_i, w_i)` over the fields with fitted
@@ -282,14 +278,8 @@ impl Models {
     ) -> bool {
         a.fill(0.0);
         let mut sum_w = 0.0;
-        for act in acts {
-            let Some(local) = self.locals.map.get(&act.id) else {
-                continue;
-            };
-            if local.dynamics_updates == 0 {
-                continue;
-            }
-            let w = weight(local, act.w);
+        for (local, w) in self.fitted(acts) {
+            let w = weight(local, w);
             if !(w > 0.0) {
                 continue;
             }
@@ -300,10 +290,14 @@ impl Models {
             }
             sum_w += w;
         }
-        if sum_w <= 0.0 {
-            return false;
-        }
-        a.iter_mut().for_each(|v| *v /= sum_w);
-        true
+        normalise(a, sum_w)
     }
+}
+
+/// Divides the blend `a` by its total weight `sum`; whether there was any (`a` untouched if not).
+fn normalise(a: &mut [f64], sum: f64) -> bool {
+    if sum > 0.0 {
+        a.iter_mut().for_each(|v| *v /= sum);
+    }
+    sum > 0.0
 }
