@@ -3,8 +3,9 @@
 use crate::data::{update_joint_poses, Data};
 use crate::error::{check_vec, DynamicsError, Result};
 use crate::inertia::ArticulatedInertia;
-use crate::model::{JointKind, Model};
+use crate::model::Model;
 use crate::spatial::Motion;
+use crate::subspace::{AnyAxis, Subspace, UnitAxis};
 use nalgebra::DVector;
 
 /// Joint accelerations under joint torques `tau` (rigid body, no friction) into `data.qdd`;
@@ -51,51 +52,42 @@ pub fn forward_dynamics<'a>(
     Ok(&data.qdd)
 }
 
-/// `U = I^A S` (angular and linear parts) and `d = Sᵀ U`: the columns of `I^A` along the joint's
-/// subspace.
-#[inline]
-fn joint_columns(
-    kind: JointKind,
-    ia: &ArticulatedInertia,
-    s: &nalgebra::Vector3<f64>,
-) -> (nalgebra::Vector3<f64>, nalgebra::Vector3<f64>, f64) {
-    match kind {
-        JointKind::Revolute => {
-            let ua = ia.a * s;
-            (ua, ia.b.tr_mul(s), s.dot(&ua))
-        }
-        JointKind::Prismatic => {
-            let ul = ia.c * s;
-            (ia.b * s, ul, s.dot(&ul))
-        }
+/// The three ABA passes on the joint poses in `data`, with the net joint torques in `data.u`:
+/// one copy per kind of motion subspace, as in [`crate::crba`] (every joint revolute about one
+/// `±e_k`, or any joint), the same values up to the sign of zeros.
+pub(crate) fn aba_passes(model: &Model, data: &mut Data, qd: &[f64]) -> Result<()> {
+    match model.revolute_axis() {
+        Some(0) => passes::<UnitAxis<0>>(model, data, qd),
+        Some(1) => passes::<UnitAxis<1>>(model, data, qd),
+        Some(2) => passes::<UnitAxis<2>>(model, data, qd),
+        _ => passes::<AnyAxis>(model, data, qd),
     }
 }
 
-/// The three ABA passes on the joint poses in `data`, with the net joint torques in `data.u`.
-pub(crate) fn aba_passes(model: &Model, data: &mut Data, qd: &[f64]) -> Result<()> {
+/// [`aba_passes`] for the motion subspace `S`.
+#[inline(always)]
+fn passes<S: Subspace>(model: &Model, data: &mut Data, qd: &[f64]) -> Result<()> {
     let n = model.nq();
     let links = model.links();
     // Pass 1: velocities, velocity-product accelerations and bias forces.
     let mut v_parent = Motion::default();
     for (i, l) in links.iter().enumerate() {
-        let vj = l.motion(qd[i]);
-        let v = data.joint_pose[i].motion_to_child(&v_parent) + vj;
+        let v = S::add_motion(l, data.joint_pose[i].motion_to_child(&v_parent), qd[i]);
         data.v[i] = v;
-        data.c[i] = v.cross_motion(&vj);
+        data.c[i] = S::cross_joint(l, &v, qd[i]);
         data.ia[i] = ArticulatedInertia::from_rigid(&l.inertia);
         data.pa[i] = v.cross_force(&l.inertia.mul_motion(&v));
         v_parent = v;
     }
     // Pass 2: articulated inertias and bias forces, tip to base.
     for i in (0..n).rev() {
-        let s = &links[i].axis;
         let ia = data.ia[i];
-        let (ua, ul, d) = joint_columns(links[i].kind, &ia, s);
+        let (ua, ul, d) = S::columns(&links[i], &ia);
         if !(d > 0.0) {
             return Err(DynamicsError::Singular { joint: i, value: d });
         }
         let inv_d = 1.0 / d;
-        let u = data.u[i] - links[i].project(&data.pa[i]);
+        let u = data.u[i] - S::project(&links[i], &data.pa[i]);
         data.u_ang[i] = ua;
         data.u_lin[i] = ul;
         data.d_inv[i] = inv_d;
@@ -120,9 +112,63 @@ pub(crate) fn aba_passes(model: &Model, data: &mut Data, qd: &[f64]) -> Result<(
         let qdd =
             (data.u[i] - data.u_ang[i].dot(&a.ang) - data.u_lin[i].dot(&a.lin)) * data.d_inv[i];
         data.qdd[i] = qdd;
-        let a = a + l.motion(qdd);
+        let a = S::add_motion(l, a, qdd);
         data.a[i] = a;
         a_parent = a;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::data::update_joint_poses;
+    use crate::subspace::unit_axis_models;
+
+    /// The unit-axis passes give the general passes' bits (zeros up to their sign) in every
+    /// quantity they leave in `data`, at states with zero and non-zero velocities and torques.
+    #[test]
+    fn unit_axis_passes_give_the_general_bits() {
+        let bits = |d: &Data| {
+            let z = |x: f64| if x == 0.0 { 0.0f64 } else { x }.to_bits();
+            let mut b: Vec<u64> = d.qdd.iter().map(|&x| z(x)).collect();
+            for m in d.v.iter().chain(&d.a).chain(&d.c) {
+                b.extend(m.ang.iter().chain(m.lin.iter()).map(|&x| z(x)));
+            }
+            for ia in &d.ia {
+                b.extend(
+                    ia.a.iter()
+                        .chain(ia.b.iter())
+                        .chain(ia.c.iter())
+                        .map(|&x| z(x)),
+                );
+            }
+            for f in &d.pa {
+                b.extend(f.ang.iter().chain(f.lin.iter()).map(|&x| z(x)));
+            }
+            b.extend(d.u.iter().chain(&d.d_inv).map(|&x| z(x)));
+            b
+        };
+        for model in unit_axis_models() {
+            assert!(model.revolute_axis().is_some(), "{}", model.name());
+            let n = model.nq();
+            for scale in [0.0, 1.0] {
+                let q: Vec<f64> = (0..n).map(|i| 0.3 * i as f64 - 0.7).collect();
+                let qd: Vec<f64> = (0..n).map(|i| scale * (0.4 - 0.15 * i as f64)).collect();
+                let tau: Vec<f64> = (0..n).map(|i| scale * (1.5 - 0.5 * i as f64)).collect();
+                let mut fast = model.data();
+                aba(&model, &mut fast, &q, &qd, &tau).unwrap();
+                let mut general = model.data();
+                update_joint_poses(&model, &mut general, &q);
+                general.u.copy_from_slice(&tau);
+                passes::<AnyAxis>(&model, &mut general, &qd).unwrap();
+                assert_eq!(
+                    bits(&fast),
+                    bits(&general),
+                    "{} at scale {scale}",
+                    model.name()
+                );
+            }
+        }
+    }
 }

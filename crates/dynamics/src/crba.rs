@@ -4,8 +4,9 @@ use crate::data::{update_joint_poses, Data};
 use crate::error::{check_vec, Result};
 use crate::inertia::Inertia;
 use crate::model::{Link, Model};
-use crate::spatial::{Force, Pose};
-use nalgebra::{DMatrix, Vector3};
+use crate::spatial::Pose;
+use crate::subspace::{AnyAxis, Subspace, UnitAxis};
+use nalgebra::DMatrix;
 
 /// Mass matrix `M(q)` (symmetric, n×n, kg·m²) into `data.mass`; returns it.
 ///
@@ -53,52 +54,6 @@ fn crba_pass_body(model: &Model, data: &mut Data) {
         (Some(1), _) => pass::<UnitAxis<1>>(model, data),
         (Some(2), _) => pass::<UnitAxis<2>>(model, data),
         _ => pass::<AnyAxis>(model, data),
-    }
-}
-
-/// A joint's motion subspace `S` as the pass uses it.
-trait Subspace {
-    /// `I S`: the column of the (composite) inertia `ic` that the joint of `link` moves.
-    fn column(link: &Link, ic: &Inertia) -> Force;
-    /// `Sᵀ f`.
-    fn project(link: &Link, f: &Force) -> f64;
-}
-
-/// Revolute or prismatic about any axis: the products of [`Inertia::mul_motion`] and
-/// [`Link::project`].
-struct AnyAxis;
-
-impl Subspace for AnyAxis {
-    #[inline(always)]
-    fn column(link: &Link, ic: &Inertia) -> Force {
-        ic.mul_motion(&link.motion(1.0))
-    }
-    #[inline(always)]
-    fn project(link: &Link, f: &Force) -> f64 {
-        link.project(f)
-    }
-}
-
-/// Revolute about `s e_K` with `s = ±1`: `I S = s (I_:K, −h × e_K)` and `Sᵀ f = s n_K`, the
-/// products above without their exact zero terms (the same values, up to the sign of a zero).
-struct UnitAxis<const K: usize>;
-
-impl<const K: usize> Subspace for UnitAxis<K> {
-    #[inline(always)]
-    fn column(link: &Link, ic: &Inertia) -> Force {
-        let s = link.axis[K];
-        let (k1, k2) = ((K + 1) % 3, (K + 2) % 3);
-        let mut lin = Vector3::zeros();
-        lin[k1] = -(ic.h[k2] * s);
-        lin[k2] = ic.h[k1] * s;
-        Force {
-            ang: ic.inertia.column(K) * s,
-            lin,
-        }
-    }
-    #[inline(always)]
-    fn project(link: &Link, f: &Force) -> f64 {
-        link.axis[K] * f.ang[K]
     }
 }
 
@@ -203,25 +158,7 @@ fn mirror_upper(mass: &mut [f64], n: usize) {
 mod tests {
     use super::*;
     use crate::robots;
-
-    /// Models with every joint about one `±e_k`: `sarcos7` (`+z`), `planar3` (`−y`) and random
-    /// arms of 3, 6, 7 and 8 joints turned about `±x`, `±y`, `±z`.
-    fn unit_axis_models() -> Vec<Model> {
-        let mut models = vec![robots::sarcos7(), robots::planar3()];
-        for (seed, n) in [(0u64, 3), (1, 6), (2, 7), (3, 8), (4, 6), (5, 7)] {
-            let mut spec = robots::random_arm(n, seed, false).spec().clone();
-            for (i, l) in spec.links.iter_mut().enumerate() {
-                l.axis = Vector3::zeros();
-                l.axis[seed as usize % 3] = if (i as u64 + seed).is_multiple_of(3) {
-                    -1.0
-                } else {
-                    1.0
-                };
-            }
-            models.push(Model::new(spec).unwrap());
-        }
-        models
-    }
+    use crate::subspace::unit_axis_models;
 
     /// The unit-axis path (with the joint count constant for 6 and 7 joints) gives the general
     /// path's bits: the same products without their zero terms, in the same order.

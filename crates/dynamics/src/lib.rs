@@ -36,6 +36,7 @@ pub mod robots;
 pub mod sim;
 pub mod sincos;
 pub mod spatial;
+mod subspace;
 pub mod urdf;
 
 pub use aba::{aba, forward_dynamics};
