@@ -28,7 +28,37 @@ impl PyRobot {
     fn n(&self) -> usize {
         self.model.nq()
     }
+
+    /// `f(model, data, q, qd, x)` on Python values: the third vector named `third`, the result
+    /// named `out` checked finite ([`finite_result`]) and returned as a numpy array.
+    fn dynamics3<'py>(
+        &mut self,
+        py: Python<'py>,
+        (func, f): (&str, Dynamics3),
+        out: &str,
+        [q, qd, x]: [&Bound<'py, PyAny>; 3],
+        third: &str,
+    ) -> PyResult<Arr1<'py>> {
+        let (q, qd, x) = (vector("q", q)?, vector("qd", qd)?, vector(third, x)?);
+        let (q, qd, x) = (q.as_slice(), qd.as_slice(), x.as_slice());
+        let r = f(&self.model, &mut self.data, q, qd, x).map_err(dyn_err)?;
+        finite_result(
+            func,
+            &[(out, r.as_slice())],
+            &[("q", q), ("qd", qd), (third, x)],
+        )?;
+        Ok(out1(py, r.as_slice()))
+    }
 }
+
+/// A dynamics function of the crate on three joint vectors (`rnea`, `aba`, `forward_dynamics`).
+type Dynamics3 = for<'a> fn(
+    &Model,
+    &'a mut Data,
+    &[f64],
+    &[f64],
+    &[f64],
+) -> dynamics::Result<&'a nalgebra::DVector<f64>>;
 
 /// The loader's options for `tip` (`None`: the loader's naming rule chooses the end effector).
 fn urdf_options(tip: Option<String>) -> urdf::UrdfOptions {
@@ -301,25 +331,8 @@ impl PyRobot {
         qd: &Bound<'py, PyAny>,
         qdd: &Bound<'py, PyAny>,
     ) -> PyResult<Arr1<'py>> {
-        let (q, qd, qdd) = (vector("q", q)?, vector("qd", qd)?, vector("qdd", qdd)?);
-        let tau = dynamics::rnea(
-            &self.model,
-            &mut self.data,
-            q.as_slice(),
-            qd.as_slice(),
-            qdd.as_slice(),
-        )
-        .map_err(dyn_err)?;
-        finite_result(
-            "rnea",
-            &[("tau", tau.as_slice())],
-            &[
-                ("q", q.as_slice()),
-                ("qd", qd.as_slice()),
-                ("qdd", qdd.as_slice()),
-            ],
-        )?;
-        Ok(out1(py, tau.as_slice()))
+        let f = ("rnea", dynamics::rnea as Dynamics3);
+        self.dynamics3(py, f, "tau", [q, qd, qdd], "qdd")
     }
 
     /// Forward dynamics `q̈ = M⁻¹(τ − C q̇ − g)` (rad/s²; rigid body, no friction), by ABA.
@@ -330,25 +343,8 @@ impl PyRobot {
         qd: &Bound<'py, PyAny>,
         tau: &Bound<'py, PyAny>,
     ) -> PyResult<Arr1<'py>> {
-        let (q, qd, tau) = (vector("q", q)?, vector("qd", qd)?, vector("tau", tau)?);
-        let qdd = dynamics::aba(
-            &self.model,
-            &mut self.data,
-            q.as_slice(),
-            qd.as_slice(),
-            tau.as_slice(),
-        )
-        .map_err(dyn_err)?;
-        finite_result(
-            "aba",
-            &[("qdd", qdd.as_slice())],
-            &[
-                ("q", q.as_slice()),
-                ("qd", qd.as_slice()),
-                ("tau", tau.as_slice()),
-            ],
-        )?;
-        Ok(out1(py, qdd.as_slice()))
+        let f = ("aba", dynamics::aba as Dynamics3);
+        self.dynamics3(py, f, "qdd", [q, qd, tau], "tau")
     }
 
     /// Forward dynamics of the robot with friction, `q̈ = M⁻¹(u − h(q, q̇))` (rad/s²).
@@ -359,25 +355,8 @@ impl PyRobot {
         qd: &Bound<'py, PyAny>,
         u: &Bound<'py, PyAny>,
     ) -> PyResult<Arr1<'py>> {
-        let (q, qd, u) = (vector("q", q)?, vector("qd", qd)?, vector("u", u)?);
-        let qdd = dynamics::forward_dynamics(
-            &self.model,
-            &mut self.data,
-            q.as_slice(),
-            qd.as_slice(),
-            u.as_slice(),
-        )
-        .map_err(dyn_err)?;
-        finite_result(
-            "forward_dynamics",
-            &[("qdd", qdd.as_slice())],
-            &[
-                ("q", q.as_slice()),
-                ("qd", qd.as_slice()),
-                ("u", u.as_slice()),
-            ],
-        )?;
-        Ok(out1(py, qdd.as_slice()))
+        let f = ("forward_dynamics", dynamics::forward_dynamics as Dynamics3);
+        self.dynamics3(py, f, "qdd", [q, qd, u], "u")
     }
 
     fn __repr__(&self) -> String {
