@@ -115,7 +115,7 @@ pub struct TrainConfig {
     /// After an episode braked or aborted, the first move of the return home (to a path
     /// posture or home) starts its reference at the arm's measured velocity: a quintic from
     /// `(q, q̇, 0)` to `(target, 0, 0)`, instead of the minimum-jerk move from rest. Default
-    /// false. Why: the arm is still moving when an episode brakes, and a reference at rest
+    /// true. Why: the arm is still moving when an episode brakes, and a reference at rest
     /// makes the PD's damping `K_D q̇` brake it within a few periods, with the largest command
     /// steps of a sarcos7 run (D44).
     pub brake_return_from_velocity: bool,
@@ -179,7 +179,7 @@ impl Default for TrainConfig {
             switch_seconds: 0.25,
             first_switch_seconds: 5.0,
             brake_switch_seconds: 0.05,
-            brake_return_from_velocity: false,
+            brake_return_from_velocity: true,
             command_step_limit: None,
             hold_before_continuation: true,
             freeze_static_in_continuation: true,
