@@ -280,7 +280,6 @@ impl Features {
     /// [`Self::add_gain_table`] into two blends at once: `Â_i(q)` is formed once and added with
     /// weight `w1` into `a1` and `w2` into `a2` (each only if its weight is > 0): the bits of two
     /// calls of [`Self::add_gain_table`].
-    #[allow(clippy::too_many_arguments)]
     pub fn add_gain_table_pair(
         &self,
         table: &[f64],
