@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Checks an `osrl reproduce` report folder: results.json has E1..E8, config, seeds and
+"""Checks an `osrl reproduce` report folder: results.json has E1..E8 (and E9 where it ran), config, seeds and
 wall_seconds; every number outside `config` is finite (serde_json writes NaN/inf as null, so no null is allowed);
 no experiment reports a failed run; index.html inlines every figure; the PNGs exist."""
 import json, math, pathlib, sys

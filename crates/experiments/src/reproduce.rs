@@ -63,7 +63,7 @@ pub struct Reproduction {
     pub failed: Vec<(String, String)>,
 }
 
-/// Runs E1–E8 at `sizes` (`quick` records which sizes they are), the training jobs in parallel
+/// Runs E1–E9 at `sizes` (`quick` records which sizes they are), the training jobs in parallel
 /// on the rayon pool; `observer` sees the progress.
 ///
 /// # Errors

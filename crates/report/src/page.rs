@@ -223,7 +223,8 @@ fn inline_svg(out: &Path, file: &str) -> Result<String> {
 pub fn html(out: &Path, results: &Results, figs: &[Fig]) -> Result<String> {
     let mut html = String::from(HEAD);
     html += &format!(
-        "<p>Peters &amp; Schaal (ICRA 2007), reproduced: experiments E1–E8{}. Wall time {:.0} s.</p>\n",
+        "<p>Peters &amp; Schaal (ICRA 2007), reproduced: experiments E1–{}{}. Wall time {:.0} s.</p>\n",
+        if results.e9.is_empty() { "E8" } else { "E9" },
         if results.config.quick { " at the <em>quick</em> size (small, for CI: not the paper's training times)" } else { "" },
         results.wall_seconds
     );
