@@ -32,6 +32,38 @@ pub struct Measurement {
     pub u: DVector<f64>,
 }
 
+impl Measurement {
+    /// Copies `other` into `self`: in place, without allocating, when the two have the same
+    /// dimensions (a learner's buffer for the next measurement), else as a clone.
+    ///
+    /// ```
+    /// use osrl_dynamics::{robots, Robot, SimConfig, SimRobot};
+    /// let mut sim = SimRobot::new(robots::planar3(), SimConfig::default())?;
+    /// let mut last = sim.measurement().clone();
+    /// last.copy_from(sim.step(&[0.0; 3])?);
+    /// assert_eq!(&last, sim.measurement());
+    /// # Ok::<(), osrl_dynamics::DynamicsError>(())
+    /// ```
+    pub fn copy_from(&mut self, other: &Measurement) {
+        let pairs = [
+            (&mut self.q, &other.q),
+            (&mut self.qd, &other.qd),
+            (&mut self.x, &other.x),
+            (&mut self.xd, &other.xd),
+            (&mut self.xdd, &other.xdd),
+            (&mut self.u, &other.u),
+        ];
+        if pairs.iter().any(|(a, b)| a.len() != b.len()) {
+            *self = other.clone();
+            return;
+        }
+        for (a, b) in pairs {
+            a.copy_from(b);
+        }
+        self.t = other.t;
+    }
+}
+
 /// A robot as the learner sees it: commands in, measurements out.
 pub trait Robot {
     /// Number of joints.

@@ -86,9 +86,8 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
                     None => min_jerk(start[i], target[i], t, total),
                 };
             }
-            let prev = self.prev.clone();
             let scale = self.cfg.babble.gain_scale;
-            pd_command(self.learner, &prev, &q_t, &v_t, scale, &mut self.u)?;
+            pd_command(self.learner, &self.prev, &q_t, &v_t, scale, &mut self.u)?;
             // None while holding the target, so the arm comes to rest there (the static
             // gravity model's samples).
             if noise > 0.0 && (k as f64) * self.dt < total {

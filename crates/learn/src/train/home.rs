@@ -78,16 +78,22 @@ impl<R: Robot + ?Sized> Trainer<'_, R> {
             if k >= min_k && !self.away_from_home() {
                 return Ok(true);
             }
-            let prev = self.prev.clone();
             let scale = self.cfg.babble.gain_scale;
-            pd_command(self.learner, &prev, &self.home, &zero, scale, &mut self.u)?;
+            pd_command(
+                self.learner,
+                &self.prev,
+                &self.home,
+                &zero,
+                scale,
+                &mut self.u,
+            )?;
             let cfg = self.learner.config();
             let (kp, lim) = (&cfg.nominal.kp, &cfg.guards.torque_limits);
             // The first second is the plain PD hold (arms that settle in it are held as
             // without integral action); the integral acts only on an arm that did not.
             if k >= min_k && ti > 0.0 {
                 for i in 0..n {
-                    self.integral[i] += (self.home[i] - prev.q[i]) * self.dt;
+                    self.integral[i] += (self.home[i] - self.prev.q[i]) * self.dt;
                     let ki = scale * kp[i] / ti;
                     let bound = 0.5 * lim[i] / ki;
                     self.integral[i] = self.integral[i].clamp(-bound, bound);

@@ -130,6 +130,9 @@ pub struct Trainer<'a, R: Robot + ?Sized> {
     pub(super) q_max: Vec<f64>,
     /// The last measurement and the command being sent.
     pub(super) prev: Measurement,
+    /// The buffer the next measurement is copied into (swapped with `prev` after each step, so
+    /// that a step does not allocate).
+    cur: Measurement,
     pub(super) u: Vec<f64>,
     pub(super) rng: ChaCha8Rng,
     /// Control period (s), control steps per simulated minute, steps done and in all.
@@ -238,6 +241,7 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
         let eval_steps = (cfg.eval_every_minutes * per_min as f64).round() as u64;
         Ok(Self {
             home: prev.q.as_slice().to_vec(),
+            cur: prev.clone(),
             prev,
             robot,
             learner,
@@ -394,21 +398,21 @@ impl<'a, R: Robot + ?Sized> Trainer<'a, R> {
         if self.progress.phase == Phase::OnPolicy {
             self.steps_seen.sent(&self.u);
         }
-        let cur = self.robot.step(&self.u)?.clone();
+        self.cur.copy_from(self.robot.step(&self.u)?);
         self.steps += 1;
         self.steps_seen.tick(self.steps, self.per_min);
         if self.learning && self.steps.is_multiple_of(self.cfg.learn_every as u64) {
-            match self.learner.learn(&self.prev, &cur) {
+            match self.learner.learn(&self.prev, &self.cur) {
                 Ok(()) | Err(LearnError::BadMeasurement(_)) => {}
                 Err(e) => return Err(e),
             }
         } else if self.static_only {
-            match self.learner.learn_static_gravity(&self.prev, &cur) {
+            match self.learner.learn_static_gravity(&self.prev, &self.cur) {
                 Ok(()) | Err(LearnError::BadMeasurement(_)) => {}
                 Err(e) => return Err(e),
             }
         }
-        self.prev = cur;
+        std::mem::swap(&mut self.prev, &mut self.cur);
         if self.eval_steps > 0 && self.steps >= self.next_eval {
             self.next_eval += self.eval_steps;
             self.evaluate_now()?;
