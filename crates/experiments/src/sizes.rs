@@ -128,7 +128,7 @@ impl Sizes {
             e8: ChangeSizes::full(),
             e9: E9Sizes {
                 planar3_seeds: 3,
-                sarcos7_seeds: 1,
+                sarcos7_seeds: 3,
                 paths_per_kind: 2,
             },
         }
