@@ -263,9 +263,9 @@ mod tests {
         let sizes = Sizes::full();
         let jobs = plan(&sizes);
         // Per robot: 3 RWR seeds, 5 variants and 1 payload run (one ablation seed each), and
-        // the family runs of E9 (planar3 3, sarcos7 1).
-        assert_eq!(jobs.len(), 22);
-        assert_eq!(jobs.iter().filter(|j| j.family).count(), 4);
+        // the family runs of E9 (3 per robot).
+        assert_eq!(jobs.len(), 24);
+        assert_eq!(jobs.iter().filter(|j| j.family).count(), 6);
         for (i, a) in jobs.iter().enumerate() {
             assert!(!jobs[i + 1..].contains(a), "{a:?} twice");
         }
@@ -282,7 +282,7 @@ mod tests {
         assert_eq!(jobs[0].robot, "sarcos7");
         assert_eq!(jobs[0].variant, Variant::Paper);
         assert_eq!(jobs[1].variant, Variant::Unweighted);
-        assert!(jobs[10..].iter().all(|j| j.robot == "planar3"));
+        assert!(jobs[12..].iter().all(|j| j.robot == "planar3"));
         assert_eq!(jobs.iter().filter(|j| j.is_reference()).count(), 2);
     }
 }
