@@ -76,7 +76,7 @@ pub(crate) fn table(r: &Results) -> String {
 
 /// The E9 figure of one robot: tracking and nMSE per path (index 0: the default figure-8), one
 /// marker per seed and controller.
-pub(crate) fn figure(robot: &str, e: &E9Row) -> Figure {
+pub fn figure(robot: &str, e: &E9Row) -> Figure {
     let mut tracking = Panel::new(
         "tracking RMS per path (0: default figure-8)",
         "path",

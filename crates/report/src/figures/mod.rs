@@ -7,3 +7,6 @@ pub mod learned;
 pub mod path;
 pub mod safety;
 pub mod toy;
+
+/// E9's figure of one robot (issue 27): tracking and command nMSE per held-out path.
+pub use crate::family::figure as held_out;
