@@ -1,7 +1,7 @@
 //! E9 (issue 27): one controller for the workspace. Per seed, a controller trained on the
 //! default figure-8 only and one trained on the family of paths around it (`osrl train
 //! --trajectory family`), for the same time, each evaluated on held-out paths (two figure-8s,
-//! two circles and two minimum-jerk moves drawn with a seed no training uses) and on the
+//! two circles and two minimum-jerk paths drawn with a seed no training uses) and on the
 //! default figure-8: the table of tracking and command nMSE per path, whether the
 //! family-trained controller meets issue 27's bounds there, and the figure
 //! `<robot>_held_out.svg/png`. `osrl reproduce` trains 30 (planar3) and 60 (sarcos7) minutes.
