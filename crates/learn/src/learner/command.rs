@@ -55,13 +55,11 @@ impl Learner {
     ) -> Result<CommandSource> {
         self.check_command_args(q, qd, xdd_ref, u)?;
         self.stats.commands += 1;
-        self.ws.gains = None;
-        let finished = match self.blend(q, qd, xdd_ref, u) {
-            Ok(None) => self.fallback(q, qd, u),
-            Ok(Some(blend)) => self.finish_blend(q, qd, blend, rng, u),
+        let finished = self.with_fresh_gains(|l| match l.blend(q, qd, xdd_ref, u) {
+            Ok(None) => l.fallback(q, qd, u),
+            Ok(Some(blend)) => l.finish_blend(q, qd, blend, rng, u),
             Err(e) => Err(e),
-        };
-        self.ws.gains = None;
+        });
         let source = finished?;
         let source = self.guard_non_finite(q, qd, source, u)?;
         self.clip(u);
@@ -227,6 +225,16 @@ impl Learner {
             }
         }
         Ok(())
+    }
+
+    /// Runs `f` with the cache of `Â` at one state (`ws.gains`, filled by
+    /// [`Learner::command_gains`]) empty at its start and emptied again at its end, so that
+    /// nothing outside `f` reads an `Â` formed at another state.
+    pub(super) fn with_fresh_gains<T>(&mut self, f: impl FnOnce(&mut Self) -> T) -> T {
+        self.ws.gains = None;
+        let out = f(self);
+        self.ws.gains = None;
+        out
     }
 
     /// `Â` at the command's state `q` (active fields in `ws.acts`): of the command's blend in

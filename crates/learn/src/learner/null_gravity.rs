@@ -164,10 +164,7 @@ impl Learner {
             self.load.add_into(&ws.acts, u0);
         }
         // Its own `Â` at this state, not a command's (`command_gains`).
-        self.ws.gains = None;
-        let corrected = self.add_null_correction(q, u0);
-        self.ws.gains = None;
-        corrected?;
+        self.with_fresh_gains(|l| l.add_null_correction(q, u0))?;
         Ok(known)
     }
 
