@@ -12,19 +12,10 @@
 mod common;
 use common::{wrote, Args, Res};
 use osrl_experiments::{e8, Sizes};
+use osrl_report::e8::{minutes, or_diverged as mm};
 use osrl_report::figures::change::timelines;
 use osrl_report::plot;
 use std::collections::BTreeMap;
-
-/// Minutes to a bound, `never` for none.
-fn minutes(v: Option<f64>) -> String {
-    v.map_or("never".into(), |m| format!("{m:.2}"))
-}
-
-/// Tracking in mm, `diverged` for none.
-fn mm(v: Option<f64>) -> String {
-    v.map_or("diverged".into(), |x| format!("{x:.3}"))
-}
 
 fn main() -> Res<()> {
     let a = Args::parse(10.0, 1)?;

@@ -7,12 +7,12 @@ use osrl_experiments::analytical::ROBOTS;
 use osrl_experiments::results::Results;
 
 /// Minutes to a bound: `never` within the timeline for none.
-fn minutes(v: Option<f64>) -> String {
+pub fn minutes(v: Option<f64>) -> String {
     v.map_or("never".into(), |m| format!("{m:.2}"))
 }
 
 /// A tracking number of E8, `diverged` for none (its evaluation's error passed 0.2 m).
-fn or_diverged(v: Option<f64>) -> String {
+pub fn or_diverged(v: Option<f64>) -> String {
     v.map_or("diverged".into(), |x| num(Some(x)))
 }
 

@@ -1,7 +1,7 @@
 #![doc = include_str!("../README.md")]
 
 pub mod csv;
-mod e8;
+pub mod e8;
 mod error;
 mod family;
 pub mod figures;

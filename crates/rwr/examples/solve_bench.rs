@@ -3,6 +3,8 @@
 //! features, 7 outputs). `cargo run --release -p rwr --example solve_bench`. Only ratios
 //! against another build run alternately on the same machine mean anything.
 
+use rand::{RngExt, SeedableRng};
+use rand_chacha::ChaCha8Rng;
 use rwr::{OnlineRwr, RwrConfig};
 use std::time::Instant;
 
@@ -11,17 +13,12 @@ fn main() {
         let mut rwr = OnlineRwr::new(p, d, RwrConfig::default()).unwrap();
         let mut phi = vec![0.0; p];
         let mut u = vec![0.0; d];
-        // Deterministic, well-spread samples: a linear congruential sequence.
-        let mut s = 1u64;
-        let mut next = || {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (s >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
+        // Seeded, well-spread samples.
+        let mut rng = ChaCha8Rng::seed_from_u64(1);
         for _ in 0..4 * p {
-            phi.iter_mut().for_each(|f| *f = next());
-            u.iter_mut().for_each(|a| *a = next());
+            phi.iter_mut()
+                .for_each(|f| *f = rng.random_range(-0.5..0.5));
+            u.iter_mut().for_each(|a| *a = rng.random_range(-0.5..0.5));
             rwr.observe(&phi, &u, 0.0, 1.0).unwrap();
         }
         let n = 20_000;
