@@ -6,10 +6,14 @@
 //! ```sh
 //! cargo run --release -p osrl-cli --example e9_models -- 2 figure8.osrl family.osrl
 //! ```
+//!
+//! With `--validation` after the models, on validation paths drawn with another seed
+//! (`osrl_experiments::family::validation`) instead: settings are chosen on those, and the
+//! held-out paths only report them.
 
 use anyhow::{bail, Context, Result};
 use osrl_experiments::e9::{within_bounds, E9Point};
-use osrl_experiments::family::{held_out, label};
+use osrl_experiments::family::{held_out, label, validation};
 use osrl_experiments::Setup;
 use osrl_learn::SavedModel;
 
@@ -25,8 +29,12 @@ fn point(e: &osrl_learn::eval::EvalResult) -> E9Point {
 
 fn main() -> Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let [per_kind, f8, fam] = args.as_slice() else {
-        bail!("usage: e9_models PATHS_PER_KIND FIGURE8_MODEL FAMILY_MODEL");
+    let (args, on_validation) = match args.split_last() {
+        Some((last, rest)) if last == "--validation" => (rest, true),
+        _ => (args.as_slice(), false),
+    };
+    let [per_kind, f8, fam] = args else {
+        bail!("usage: e9_models PATHS_PER_KIND FIGURE8_MODEL FAMILY_MODEL [--validation]");
     };
     let per_kind: usize = per_kind
         .parse()
@@ -44,7 +52,11 @@ fn main() -> Result<()> {
         let own = setup.evaluator(&model)?.evaluate(&mut learner)?;
         let mut rows = vec![("default figure-8".to_string(), point(&own))];
         if paths.is_none() {
-            paths = Some(held_out(&setup, per_kind)?);
+            paths = Some(if on_validation {
+                validation(&setup, per_kind)?
+            } else {
+                held_out(&setup, per_kind)?
+            });
         }
         for p in paths.iter().flatten() {
             let e = setup.evaluate_path(&model, &mut learner, p)?;
@@ -70,5 +82,16 @@ fn main() -> Result<()> {
             if within_bounds(b, own) { "within" } else { "outside" }
         );
     }
+    let paths = &runs[1][1..];
+    let geo = |f: &dyn Fn(&E9Point) -> f64| {
+        (paths.iter().map(|(_, p)| f(p).ln()).sum::<f64>() / paths.len() as f64).exp()
+    };
+    println!(
+        "family on the {} paths: {} within, geometric means {:.3} mm, nMSE {:.4}",
+        paths.len(),
+        paths.iter().filter(|(_, p)| within_bounds(p, own)).count(),
+        geo(&|p| p.tracking_rms_mm),
+        geo(&|p| p.command_nmse)
+    );
     Ok(())
 }

@@ -6,9 +6,12 @@
 //! ```sh
 //! cargo run --release -p osrl-cli --example eval_split -- [--held-out N] A.osrl B.osrl …
 //! ```
+//!
+//! `--validation N` in place of `--held-out N` evaluates on the validation paths
+//! (`osrl_experiments::family::validation`), on which settings are chosen.
 
 use anyhow::{Context, Result};
-use osrl_experiments::family::{held_out, label};
+use osrl_experiments::family::{held_out, label, validation};
 use osrl_experiments::Setup;
 use osrl_learn::eval::EvalResult;
 use osrl_learn::SavedModel;
@@ -16,11 +19,12 @@ use osrl_learn::SavedModel;
 fn main() -> Result<()> {
     let mut args: Vec<String> = std::env::args().skip(1).collect();
     let mut per_kind = 0;
-    if args.first().is_some_and(|a| a == "--held-out") {
+    let on_validation = args.first().is_some_and(|a| a == "--validation");
+    if on_validation || args.first().is_some_and(|a| a == "--held-out") {
         per_kind = (args.get(1))
             .and_then(|n| n.parse().ok())
             .filter(|n| (1..=20).contains(n))
-            .context("--held-out N: a whole number from 1 to 20")?;
+            .context("--held-out N / --validation N: a whole number from 1 to 20")?;
         args.drain(..2);
     }
     for file in &args {
@@ -31,7 +35,12 @@ fn main() -> Result<()> {
         println!("{file}");
         print_split("default figure-8", &e);
         if per_kind > 0 {
-            for p in held_out(&setup, per_kind)? {
+            let paths = if on_validation {
+                validation(&setup, per_kind)?
+            } else {
+                held_out(&setup, per_kind)?
+            };
+            for p in paths {
                 let e = setup.evaluate_path(&model, &mut learner, &p)?;
                 print_split(&label(&p), &e);
             }

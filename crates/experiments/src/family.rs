@@ -15,6 +15,10 @@ use osrl_learn::{LearnError, Learner};
 /// with it (training draws with its training seed, 0, 1, 2, …).
 pub const HELD_OUT_SEED: u64 = 0x27_0000_0000;
 
+/// The seed of the validation paths ([`validation`]): neither a training seed nor
+/// [`HELD_OUT_SEED`].
+pub const VALIDATION_SEED: u64 = 0x27_5000_0000;
+
 /// The family's drawn paths, approached from home, one per episode.
 pub struct FamilySource(pub FamilySampler);
 
@@ -90,12 +94,27 @@ impl Setup {
 /// # Errors
 /// As [`FamilySampler::draw`].
 pub fn held_out(setup: &Setup, per_kind: usize) -> Result<Vec<FamilyPath>> {
+    drawn_per_kind(setup, per_kind, HELD_OUT_SEED)
+}
+
+/// Validation paths: drawn as [`held_out`]'s, with [`VALIDATION_SEED`] in place of
+/// [`HELD_OUT_SEED`], so that a setting can be chosen on them without looking at the held-out
+/// paths (`docs/family.md`).
+///
+/// # Errors
+/// As [`FamilySampler::draw`].
+pub fn validation(setup: &Setup, per_kind: usize) -> Result<Vec<FamilyPath>> {
+    drawn_per_kind(setup, per_kind, VALIDATION_SEED)
+}
+
+/// `per_kind` paths of each kind of `setup`'s family, the kind `i`'s drawn with `seed + i`.
+fn drawn_per_kind(setup: &Setup, per_kind: usize, seed: u64) -> Result<Vec<FamilyPath>> {
     let base = setup.family_config();
     let mut paths = Vec::new();
     for (i, kind) in base.family.kinds.iter().enumerate() {
         let mut cfg = base.clone();
         cfg.family.kinds = vec![*kind];
-        let seed = HELD_OUT_SEED + i as u64;
+        let seed = seed + i as u64;
         let mut s = FamilySampler::new(setup.model(), &cfg, setup.home(), seed)?;
         for _ in 0..per_kind {
             paths.push(s.draw()?);

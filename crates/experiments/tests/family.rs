@@ -60,3 +60,20 @@ fn a_family_trained_controller_beats_a_figure8_only_one_on_a_held_out_circle() {
         f8.command_nmse
     );
 }
+
+/// The validation paths, on which settings are chosen, are drawn like the held-out ones (the same
+/// kinds, in the same order, from the same family) but are other paths; both sets are the same
+/// on every call.
+#[test]
+fn validation_paths_are_reproducible_and_not_the_held_out_ones() {
+    use osrl_experiments::family::validation;
+    let setup = Setup::new("planar3").unwrap();
+    let (held, valid) = (held_out(&setup, 2).unwrap(), validation(&setup, 2).unwrap());
+    assert_eq!(valid.len(), held.len());
+    let again = validation(&setup, 2).unwrap();
+    for ((v, w), h) in valid.iter().zip(&again).zip(&held) {
+        assert_eq!(v.config.kind, h.config.kind);
+        assert_eq!(format!("{:?}", v.config), format!("{:?}", w.config));
+        assert_ne!(format!("{:?}", v.config), format!("{:?}", h.config));
+    }
+}
