@@ -269,7 +269,7 @@ impl Setup {
     /// The learner config a training run starts from: [`Setup::learner_config`]; for a family,
     /// with the static gravity model's on-policy learning off unless the family's
     /// `static_gravity_on_policy` is on, and the family's `command_projection`,
-    /// `neighbour_cutoff` and `controller_bilinear` (`docs/family.md`).
+    /// `neighbour_cutoff`, `controller_bilinear` and `dynamics_weight_power` (`docs/family.md`).
     pub fn training_learner_config(&self) -> LearnerConfig {
         let mut cfg = self.learner.clone();
         if self.trajectory.kind == osrl_control::TrajectoryKind::Family {
@@ -278,6 +278,7 @@ impl Setup {
             cfg.controllers.command_projection = family.command_projection;
             cfg.controllers.neighbour_cutoff = family.neighbour_cutoff;
             cfg.controllers.bilinear = family.controller_bilinear;
+            cfg.dynamics.weight_power = family.dynamics_weight_power;
         }
         cfg
     }
@@ -557,6 +558,22 @@ mod tests {
         assert!(bilinear(&family));
         // The set-up's own learner config is unchanged.
         assert!(!family.learner_config().controllers.bilinear);
+    }
+
+    #[test]
+    fn family_training_takes_the_familys_dynamics_weight_power() {
+        let s = Setup::new("planar3").unwrap();
+        let power = |s: &Setup| s.training_learner_config().dynamics.weight_power;
+        assert_eq!(power(&s), 1.0);
+        let mut fam = s.family_config();
+        let family = s.clone().with_trajectory(fam.clone()).unwrap();
+        assert_eq!(power(&family), 2.0);
+        assert_eq!(family.learner_config().dynamics.weight_power, 1.0);
+        fam.family.dynamics_weight_power = 1.0;
+        assert_eq!(power(&s.clone().with_trajectory(fam.clone()).unwrap()), 1.0);
+        fam.family.dynamics_weight_power = 0.5;
+        let err = s.clone().with_trajectory(fam).unwrap_err().to_string();
+        assert!(err.contains("dynamics_weight_power = 0.5"), "{err}");
     }
 
     #[test]

@@ -1,12 +1,14 @@
 //! Issue 27's small test: a family-trained planar3 controller beats a figure-8-only one of the
 //! same training time on a held-out circle (drawn with the held-out seed): both its tracking and
 //! its command nMSE there are below 3/4 of the figure-8-only controller's. Measured after 10
-//! simulated minutes (the length of D30's planar3 runs), seed 0: 0.209 mm / 0.059 against 0.303 mm /
-//! 0.091. At 8 minutes the figure-8-only controller now wins (0.309 mm / 0.079 against 0.328 /
-//! 0.107; at 6, 0.508 / 0.139 against 0.735 / 0.260): since D30 its gravity model no longer
-//! drifts at home, which halved its error on the circle (0.566 mm / 0.206 at 8 minutes before),
-//! while the family's, whose episodes rest at many postures, was unchanged; at 12 minutes the
-//! family wins again (0.183 / 0.045 against 0.286 / 0.075).
+//! simulated minutes (the length of D30's planar3 runs), seed 0, since D64 (family training fits
+//! `Â` with the activation squared): 0.188 mm / 0.0094 against 0.303 mm / 0.062 (before D64:
+//! 0.209 mm / 0.059 against 0.303 mm / 0.091, in an older build). In that build, at 8 minutes
+//! the figure-8-only controller won (0.309 mm / 0.079 against 0.328 / 0.107; at 6, 0.508 / 0.139
+//! against 0.735 / 0.260): since D30 its gravity model no longer drifts at home, which halved its
+//! error on the circle (0.566 mm / 0.206 at 8 minutes before), while the family's, whose episodes
+//! rest at many postures, was unchanged; at 12 minutes the family won again (0.183 / 0.045
+//! against 0.286 / 0.075).
 
 use osrl_control::TrajectoryKind;
 use osrl_experiments::family::held_out;
