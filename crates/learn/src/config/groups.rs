@@ -244,7 +244,8 @@ pub struct DynamicsConfig {
     /// its start for minutes (D23).
     pub trust_region: f64,
     /// A sample's weight in a field is its activation raised to this power (≥ 1): above 1 the
-    /// fit is more local than the field. Default 1.
+    /// fit is more local than the field. Default 1. Training on a family of paths uses
+    /// `[trajectory.family] dynamics_weight_power` (2) instead.
     pub weight_power: f64,
 }
 
