@@ -17,16 +17,6 @@ use osrl_experiments::family::{held_out, label, validation};
 use osrl_experiments::Setup;
 use osrl_learn::SavedModel;
 
-fn point(e: &osrl_learn::eval::EvalResult) -> E9Point {
-    E9Point {
-        seed: 0,
-        tracking_rms_mm: e.tracking_rms_mm,
-        command_nmse: e.command_nmse,
-        support_share: e.support_share,
-        diverged: e.diverged,
-    }
-}
-
 fn main() -> Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let (args, on_validation) = match args.split_last() {
@@ -50,7 +40,7 @@ fn main() -> Result<()> {
         let setup = Setup::from_saved(&saved)?;
         let (_, mut learner, model) = saved.into_parts();
         let own = setup.evaluator(&model)?.evaluate(&mut learner)?;
-        let mut rows = vec![("default figure-8".to_string(), point(&own))];
+        let mut rows = vec![("default figure-8".to_string(), E9Point::new(0, &own))];
         if paths.is_none() {
             paths = Some(if on_validation {
                 validation(&setup, per_kind)?
@@ -60,7 +50,7 @@ fn main() -> Result<()> {
         }
         for p in paths.iter().flatten() {
             let e = setup.evaluate_path(&model, &mut learner, p)?;
-            rows.push((label(p), point(&e)));
+            rows.push((label(p), E9Point::new(0, &e)));
         }
         runs.push(rows);
     }

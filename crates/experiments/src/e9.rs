@@ -19,7 +19,8 @@ pub struct E9Point {
 }
 
 impl E9Point {
-    fn new(seed: u64, e: &EvalResult) -> Self {
+    /// The point of an evaluation `e` of the controller trained with `seed`.
+    pub fn new(seed: u64, e: &EvalResult) -> Self {
         Self {
             seed,
             tracking_rms_mm: e.tracking_rms_mm,
